@@ -1,0 +1,194 @@
+//! The `repro` command line.
+
+use clap::{Parser, Subcommand};
+use repro::pipeline::cache::{CacheBusy, LockMode};
+use repro::pipeline::executor::{self, RunOptions, UsageError};
+use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
+use repro::pipeline::{graph, schema};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Exit codes.
+const EXIT_FAILED_TASKS: u8 = 1;
+const EXIT_INVALID_INPUT: u8 = 2;
+const EXIT_CACHE_BUSY: u8 = 3;
+const EXIT_ERROR: u8 = 4;
+
+const DEFAULT_PIPELINE: &str = "pipelines/thesis.yaml";
+
+#[derive(Parser)]
+#[command(name = "repro", version, about = "Reproduce the thesis' tables and figures from a pipeline of cached tasks")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Clone)]
+struct CacheArg {
+    /// Cache directory.
+    #[arg(long, default_value = "cache")]
+    cache: PathBuf,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a pipeline (computing only what is not cached) and publish its tables and figures.
+    Run {
+        /// Pipeline file.
+        #[arg(default_value = DEFAULT_PIPELINE)]
+        pipeline: PathBuf,
+        /// Run only these stages and what they need (repeatable).
+        #[arg(long = "target")]
+        targets: Vec<String>,
+        /// Worker threads (default: one per core).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Show what would run, and why, without running or writing anything.
+        #[arg(long)]
+        dry_run: bool,
+        /// List every task with its key, status and the reason it ran.
+        #[arg(long)]
+        explain: bool,
+        /// Recompute this stage's tasks even if cached (repeatable).
+        #[arg(long)]
+        force: Vec<String>,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Write a JSON run report (one record per task) to this file.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Refuse (exit 3) instead of waiting when another repro holds the cache.
+        #[arg(long)]
+        no_wait: bool,
+        /// Where figures are published.
+        #[arg(long, default_value = "figures")]
+        figures: PathBuf,
+        /// Where stage tables are published.
+        #[arg(long, default_value = "tables")]
+        tables: PathBuf,
+        /// No progress bars.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Which tasks are stale, and why (nothing is run).
+    Status {
+        #[arg(default_value = DEFAULT_PIPELINE)]
+        pipeline: PathBuf,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// List every task.
+        #[arg(long)]
+        explain: bool,
+    },
+    /// Print the stage graph in Graphviz dot.
+    Dag {
+        #[arg(default_value = DEFAULT_PIPELINE)]
+        pipeline: PathBuf,
+    },
+    /// Remove cache entries that no task of the pipelines refers to
+    /// (default: every pipelines/*.yaml).
+    Gc {
+        pipelines: Vec<PathBuf>,
+        #[command(flatten)]
+        cache: CacheArg,
+    },
+    /// Print the JSON Schema of pipeline files.
+    Schema,
+    /// List the stage kinds with their code versions.
+    Kinds,
+}
+
+fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
+    spec::load(path, registry)
+}
+
+fn fail(e: anyhow::Error) -> ExitCode {
+    if let Some(inv) = e.downcast_ref::<InvalidPipeline>() {
+        eprintln!("{inv}");
+        eprintln!("repro: the pipeline is invalid; nothing was run");
+        return ExitCode::from(EXIT_INVALID_INPUT);
+    }
+    if e.downcast_ref::<UsageError>().is_some() {
+        eprintln!("repro: error: {e}");
+        return ExitCode::from(EXIT_INVALID_INPUT);
+    }
+    if e.downcast_ref::<CacheBusy>().is_some() {
+        eprintln!("repro: error: {e}");
+        return ExitCode::from(EXIT_CACHE_BUSY);
+    }
+    eprintln!("repro: error: {e:#}");
+    ExitCode::from(EXIT_ERROR)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let registry = repro::stages::registry();
+    let result: anyhow::Result<ExitCode> = (|| match cli.command {
+        Command::Run { pipeline, targets, jobs, dry_run, explain, force, cache, report, no_wait, figures, tables, quiet } => {
+            let p = load(&pipeline, &registry)?;
+            let opts = RunOptions {
+                cache_dir: cache.cache,
+                figures_dir: figures,
+                tables_dir: tables,
+                jobs,
+                dry_run,
+                force,
+                targets,
+                lock: if no_wait { LockMode::Refuse } else { LockMode::Wait },
+                progress: !quiet,
+            };
+            let rep = executor::run(&p, &registry, &opts)?;
+            if let Some(path) = report {
+                std::fs::write(&path, serde_json::to_vec_pretty(&rep)?)?;
+            }
+            eprint!("{}", rep.summary(explain || dry_run));
+            for f in &rep.published {
+                eprintln!("  wrote {f}");
+            }
+            Ok(if rep.any_failed() { ExitCode::from(EXIT_FAILED_TASKS) } else { ExitCode::SUCCESS })
+        }
+        Command::Status { pipeline, cache, explain } => {
+            let p = load(&pipeline, &registry)?;
+            let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
+            let rep = executor::run(&p, &registry, &opts)?;
+            print!("{}", rep.summary(explain));
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Dag { pipeline } => {
+            let p = load(&pipeline, &registry)?;
+            print!("{}", graph::to_dot(&p));
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Gc { pipelines, cache } => {
+            let files = if pipelines.is_empty() {
+                let mut v: Vec<PathBuf> = std::fs::read_dir("pipelines")?
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
+                    .collect();
+                v.sort();
+                v
+            } else {
+                pipelines
+            };
+            let ps = files.iter().map(|f| load(f, &registry)).collect::<Result<Vec<_>, _>>()?;
+            let (kept, removed, bytes) = executor::gc(&ps, &registry, &cache.cache)?;
+            eprintln!(
+                "repro gc: kept {kept} entries referred to by {} pipeline(s), removed {removed} ({:.1} kB)",
+                ps.len(),
+                bytes as f64 / 1e3
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Schema => {
+            println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Kinds => {
+            for k in registry.iter() {
+                println!("{:<28} v{:<3} {}", k.name(), k.version(), k.doc());
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+    })();
+    result.unwrap_or_else(fail)
+}

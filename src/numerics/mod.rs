@@ -1,0 +1,4 @@
+//! Small numerical building blocks shared by the physics modules.
+
+pub mod quad;
+pub mod roots;

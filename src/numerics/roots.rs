@@ -1,0 +1,79 @@
+//! Root bracketing and one-dimensional maximisation.
+
+/// Bisection for a sign change of f on [a, b] (f(a) and f(b) of opposite signs), to
+/// |b - a| <= tol or exact zero. Returns None when the bracket does not hold.
+pub fn bisect<F: Fn(f64) -> f64>(f: F, mut a: f64, mut b: f64, tol: f64) -> Option<f64> {
+    let mut fa = f(a);
+    let fb = f(b);
+    if fa == 0.0 {
+        return Some(a);
+    }
+    if fb == 0.0 {
+        return Some(b);
+    }
+    if !(fa.is_finite() && fb.is_finite()) || fa.signum() == fb.signum() {
+        return None;
+    }
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if (b - a).abs() <= tol || m == a || m == b {
+            return Some(m);
+        }
+        let fm = f(m);
+        if fm == 0.0 {
+            return Some(m);
+        }
+        if fm.signum() == fa.signum() {
+            a = m;
+            fa = fm;
+        } else {
+            b = m;
+        }
+    }
+    Some(0.5 * (a + b))
+}
+
+/// The maximum of f over [a, b]: the best of `n_grid` evenly spaced samples, refined by
+/// golden-section search between its neighbours to |dx| <= tol. Returns (x, f(x)).
+pub fn maximize<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, n_grid: usize, tol: f64) -> (f64, f64) {
+    let n = n_grid.max(3);
+    let xs: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
+    let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
+    let best = (0..n).max_by(|&i, &j| fs[i].total_cmp(&fs[j])).unwrap();
+    let (mut lo, mut hi) = (xs[best.saturating_sub(1)], xs[(best + 1).min(n - 1)]);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let mut x1 = hi - g * (hi - lo);
+    let mut x2 = lo + g * (hi - lo);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    while hi - lo > tol {
+        if f1 < f2 {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + g * (hi - lo);
+            f2 = f(x2);
+        } else {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - g * (hi - lo);
+            f1 = f(x1);
+        }
+    }
+    let candidates = [(x1, f1), (x2, f2), (xs[best], fs[best])];
+    candidates.into_iter().max_by(|p, q| p.1.total_cmp(&q.1)).unwrap()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bisect_and_maximize() {
+        let r = bisect(|x| x * x - 2.0, 0.0, 2.0, 1e-14).unwrap();
+        assert!((r - 2f64.sqrt()).abs() < 1e-13);
+        assert!(bisect(|x| x * x + 1.0, 0.0, 2.0, 1e-14).is_none());
+        let (x, fx) = maximize(|x| -(x - 0.3).powi(2) + 1.0, -2.0, 2.0, 11, 1e-10);
+        assert!((x - 0.3).abs() < 1e-8 && (fx - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,233 @@
+//! The content-addressed task cache.
+//!
+//! Layout under the cache directory:
+//! - `objects/<k0k1>/<key>.entry`: one task's result. The first line is
+//!   `repro-entry-1 <blake3 of the rest>`; the rest is JSON (key, kind, version, parameters,
+//!   output hash, output). Entries are verified on every read: a corrupted or truncated
+//!   entry is reported and recomputed.
+//! - `manifests/<pipeline id>/<stage>.json`: what a stage's points were at its last run
+//!   (used to explain why a task is stale).
+//! - `runs/last.json`: the report of the last run.
+//! - `tmp/`: files being written; renamed into place when complete (atomic writes).
+//! - `lock`: held (an OS file lock) by the one `repro` that uses this cache.
+
+use super::key::{content_hash, Hash};
+use super::kind::Output;
+use anyhow::{bail, Context, Result};
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::fs::{self, File};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+const ENTRY_MAGIC: &str = "repro-entry-1";
+
+/// Writes `bytes` to `path` atomically: a temporary file in `tmp_dir` (same file system),
+/// flushed to disk, then renamed over `path`.
+pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    fs::create_dir_all(tmp_dir)?;
+    if let Some(parent) = path.parent() {
+        fs::create_dir_all(parent)?;
+    }
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp = tmp_dir.join(format!(".repro-{}-{n}.tmp", std::process::id()));
+    let result = (|| -> Result<()> {
+        let mut f = File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        fs::rename(&tmp, path)?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("writing {}", path.display()))
+}
+
+/// A cached task result.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Entry {
+    pub key: Hash,
+    pub kind: String,
+    pub version: u32,
+    pub params: Value,
+    pub output_hash: Hash,
+    pub output: Output,
+    pub wall_time_s: f64,
+}
+
+impl Entry {
+    pub fn new(key: Hash, kind: &str, version: u32, params: Value, output: Output, wall_time_s: f64) -> Self {
+        let output_hash = output_hash(&output);
+        Entry { key, kind: kind.to_string(), version, params, output_hash, output, wall_time_s }
+    }
+}
+
+/// The hash of an output's canonical bytes (what early cutoff compares).
+pub fn output_hash(output: &Output) -> Hash {
+    content_hash(&serde_json::to_vec(output).expect("outputs serialise"))
+}
+
+/// Why a cache lookup found nothing usable.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Miss {
+    Absent,
+    Corrupted(String),
+}
+
+pub struct Cache {
+    pub root: PathBuf,
+    _lock: Option<File>,
+}
+
+/// How to behave when another `repro` holds the cache.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LockMode {
+    Wait,
+    Refuse,
+}
+
+#[derive(Debug, thiserror::Error)]
+#[error("the cache {dir} is in use by another repro ({holder}); rerun when it has finished, or omit --no-wait to wait for it")]
+pub struct CacheBusy {
+    pub dir: String,
+    pub holder: String,
+}
+
+impl Cache {
+    /// Opens the cache for reading and writing, holding its lock for as long as it lives.
+    pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
+        fs::create_dir_all(root).with_context(|| format!("creating the cache directory {}", root.display()))?;
+        let lock_path = root.join("lock");
+        let file = fs::OpenOptions::new().create(true).truncate(false).write(true).read(true).open(&lock_path)?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(fs::TryLockError::WouldBlock) => {
+                let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
+                let holder = holder.trim().to_string();
+                if mode == LockMode::Refuse {
+                    return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
+                }
+                eprintln!("repro: the cache {} is in use by another repro ({holder}); waiting for it to finish", root.display());
+                file.lock()?;
+            }
+            Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
+        }
+        fs::write(root.join("lock.info"), format!("pid {}", std::process::id()))?;
+        let cache = Cache { root: root.to_path_buf(), _lock: Some(file) };
+        // Files left in tmp/ by a killed run are incomplete: nobody else can be writing them.
+        let _ = fs::remove_dir_all(cache.tmp_dir());
+        fs::create_dir_all(cache.tmp_dir())?;
+        Ok(cache)
+    }
+
+    /// Opens the cache for reading only, without the lock (status, dry runs).
+    pub fn open_read_only(root: &Path) -> Cache {
+        Cache { root: root.to_path_buf(), _lock: None }
+    }
+
+    pub fn tmp_dir(&self) -> PathBuf {
+        self.root.join("tmp")
+    }
+
+    fn objects_dir(&self) -> PathBuf {
+        self.root.join("objects")
+    }
+
+    pub fn entry_path(&self, key: &str) -> PathBuf {
+        self.objects_dir().join(&key[..2]).join(format!("{key}.entry"))
+    }
+
+    pub fn get(&self, key: &str) -> Result<Entry, Miss> {
+        let path = self.entry_path(key);
+        let bytes = match fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(Miss::Absent),
+            Err(e) => return Err(Miss::Corrupted(format!("unreadable: {e}"))),
+        };
+        decode_entry(key, &bytes).map_err(|e| Miss::Corrupted(e.to_string()))
+    }
+
+    pub fn put(&self, entry: &Entry) -> Result<()> {
+        let body = serde_json::to_vec(entry)?;
+        let mut bytes = format!("{ENTRY_MAGIC} {}\n", content_hash(&body)).into_bytes();
+        bytes.extend_from_slice(&body);
+        write_atomic(&self.entry_path(&entry.key), &bytes, &self.tmp_dir())
+    }
+
+    pub fn manifest_path(&self, pipeline_id: &str, stage: &str) -> PathBuf {
+        self.root.join("manifests").join(pipeline_id).join(format!("{stage}.json"))
+    }
+
+    pub fn read_manifest(&self, pipeline_id: &str, stage: &str) -> Option<StageManifest> {
+        let bytes = fs::read(self.manifest_path(pipeline_id, stage)).ok()?;
+        serde_json::from_slice(&bytes).ok()
+    }
+
+    pub fn write_manifest(&self, pipeline_id: &str, stage: &str, m: &StageManifest) -> Result<()> {
+        write_atomic(&self.manifest_path(pipeline_id, stage), &serde_json::to_vec_pretty(m)?, &self.tmp_dir())
+    }
+
+    /// Every key that has an entry.
+    pub fn all_keys(&self) -> Result<Vec<Hash>> {
+        let mut keys = Vec::new();
+        let Ok(dirs) = fs::read_dir(self.objects_dir()) else { return Ok(keys) };
+        for d in dirs {
+            for f in fs::read_dir(d?.path())? {
+                let name = f?.file_name().to_string_lossy().to_string();
+                if let Some(k) = name.strip_suffix(".entry") {
+                    keys.push(k.to_string());
+                }
+            }
+        }
+        keys.sort();
+        Ok(keys)
+    }
+
+    pub fn remove(&self, key: &str) -> Result<u64> {
+        let path = self.entry_path(key);
+        let size = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        fs::remove_file(&path)?;
+        Ok(size)
+    }
+}
+
+fn decode_entry(key: &str, bytes: &[u8]) -> Result<Entry> {
+    let nl = bytes.iter().position(|&b| b == b'\n').context("truncated entry (no header line)")?;
+    let header = std::str::from_utf8(&bytes[..nl]).context("header is not text")?;
+    let Some(hash) = header.strip_prefix(&format!("{ENTRY_MAGIC} ")) else {
+        bail!("not a repro cache entry (header `{}`)", header.chars().take(40).collect::<String>());
+    };
+    let body = &bytes[nl + 1..];
+    let actual = content_hash(body);
+    if actual != hash {
+        bail!("content hash mismatch (stored {}…, actual {}…): truncated or modified", &hash[..hash.len().min(12)], &actual[..12]);
+    }
+    let entry: Entry = serde_json::from_slice(body).context("entry does not parse")?;
+    if entry.key != key {
+        bail!("entry holds key {} but is stored under {key}", entry.key);
+    }
+    if output_hash(&entry.output) != entry.output_hash {
+        bail!("output hash mismatch");
+    }
+    Ok(entry)
+}
+
+/// What a stage's points were when it last ran.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct StageManifest {
+    pub kind: String,
+    pub version: u32,
+    pub inputs: BTreeMap<String, Hash>,
+    pub points: Vec<ManifestPoint>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ManifestPoint {
+    pub label: String,
+    pub params: Value,
+    pub key: Hash,
+}

@@ -1,0 +1,498 @@
+//! Runs a pipeline: plans each stage's tasks from their keys, takes what the cache holds,
+//! computes the rest in parallel (rayon), assembles stage tables and publishes them.
+//!
+//! Stages run in waves (a stage's wave is one more than that of the latest stage it
+//! needs); within a wave, the tasks of all its stages run side by side. A stage's output
+//! hash is the hash of its points' outputs, so a recomputed task that produces identical
+//! bytes changes no downstream key (early cutoff). A failing task fails its stage; stages
+//! that need it are skipped; independent stages carry on.
+
+use super::cache::{Cache, Entry, LockMode, Miss, StageManifest, ManifestPoint};
+use super::graph;
+use super::key::{stage_hash, task_key, Hash};
+use super::kind::{Inputs, Output, Registry};
+use super::report::{RunReport, Status, TaskRecord};
+use super::spec::{Pipeline, Point, Stage};
+use super::table::{ColumnData, Table};
+use anyhow::{bail, Context, Result};
+use rayon::prelude::*;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    pub cache_dir: PathBuf,
+    pub figures_dir: PathBuf,
+    pub tables_dir: PathBuf,
+    pub jobs: Option<usize>,
+    pub dry_run: bool,
+    pub force: Vec<String>,
+    pub targets: Vec<String>,
+    pub lock: LockMode,
+    pub progress: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            cache_dir: "cache".into(),
+            figures_dir: "figures".into(),
+            tables_dir: "tables".into(),
+            jobs: None,
+            dry_run: false,
+            force: Vec::new(),
+            targets: Vec::new(),
+            lock: LockMode::Wait,
+            progress: true,
+        }
+    }
+}
+
+/// A command-line mistake (unknown target, ...): reported as invalid input.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
+enum StageState {
+    Done { hash: Hash, table: Table, points: Vec<(Hash, Output)> },
+    Failed,
+    Skipped,
+    Unknown,
+}
+
+/// An identifier of a pipeline file for per-pipeline records in the cache.
+pub fn pipeline_id(p: &Pipeline) -> String {
+    let abs = std::fs::canonicalize(&p.file).unwrap_or_else(|_| PathBuf::from(&p.file));
+    blake3::hash(abs.to_string_lossy().as_bytes()).to_hex()[..16].to_string()
+}
+
+fn stale_reason(prev: Option<&StageManifest>, stage: &Stage, version: u32, inputs: &BTreeMap<String, Hash>, point: &Point, key: &str) -> String {
+    let Some(m) = prev else { return "never run".into() };
+    if m.kind != stage.kind {
+        return format!("kind changed ({} -> {})", m.kind, stage.kind);
+    }
+    let same = m.points.iter().find(|mp| mp.params == point.params);
+    match same {
+        Some(mp) => {
+            if m.version != version {
+                format!("code version of {} changed (v{} -> v{version})", stage.kind, m.version)
+            } else if &m.inputs != inputs {
+                let changed: Vec<&str> = inputs
+                    .iter()
+                    .filter(|(n, h)| m.inputs.get(*n) != Some(*h))
+                    .map(|(n, _)| n.as_str())
+                    .chain(m.inputs.keys().filter(|n| !inputs.contains_key(*n)).map(|n| n.as_str()))
+                    .collect();
+                format!("input changed: {}", changed.join(", "))
+            } else if mp.key == key {
+                "cache entry missing".into()
+            } else {
+                "key changed".into()
+            }
+        }
+        None if stage.points.len() == 1 && m.points.len() == 1 => {
+            let (a, b) = (&m.points[0].params, &point.params);
+            let mut names: BTreeSet<&String> = BTreeSet::new();
+            if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
+                for k in a.keys().chain(b.keys()) {
+                    if a.get(k) != b.get(k) {
+                        names.insert(k);
+                    }
+                }
+            }
+            format!("parameters changed: {}", names.into_iter().cloned().collect::<Vec<_>>().join(", "))
+        }
+        None => format!("new sweep point {}", point.label),
+    }
+}
+
+/// Adds the per-row task key and the code version to a stage's table, for publishing.
+fn provenance_table(points: &[(Hash, Output)], code_version: &str) -> Result<Table> {
+    let mut table = Table::new();
+    for (key, out) in points {
+        let n = out.table.n_rows();
+        let t = out
+            .table
+            .clone()
+            .with("task_key", ColumnData::Str(vec![key.clone(); n]))
+            .with("code_version", ColumnData::Str(vec![code_version.to_string(); n]));
+        table.append(&t)?;
+    }
+    Ok(table)
+}
+
+/// Writes `bytes` to `path` unless it already holds them; returns whether it wrote.
+fn publish_file(path: &Path, bytes: &[u8]) -> Result<bool> {
+    if std::fs::read(path).map(|b| b == bytes).unwrap_or(false) {
+        return Ok(false);
+    }
+    let dir = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    super::cache::write_atomic(path, bytes, dir)?;
+    Ok(true)
+}
+
+fn make_bar(multi: &indicatif::MultiProgress, stage: &str, n: usize) -> indicatif::ProgressBar {
+    let bar = multi.add(indicatif::ProgressBar::new(n as u64));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{prefix:>16} [{bar:30}] {pos}/{len} {elapsed_precise} eta {eta}")
+            .unwrap()
+            .progress_chars("=> "),
+    );
+    bar.set_prefix(stage.to_string());
+    bar
+}
+
+struct Job<'a> {
+    stage: usize,
+    point: usize,
+    key: Hash,
+    reason: String,
+    params: &'a serde_json::Value,
+}
+
+pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport> {
+    let start = Instant::now();
+    let mut target_idx = Vec::new();
+    for t in &opts.targets {
+        match p.stages.iter().position(|s| &s.name == t) {
+            Some(i) => target_idx.push(i),
+            None => {
+                return Err(UsageError(format!(
+                    "--target {t}: no stage of that name in {} (stages: {})",
+                    p.file,
+                    p.stages.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", ")
+                ))
+                .into())
+            }
+        }
+    }
+    for f in &opts.force {
+        if p.stage(f).is_none() {
+            return Err(UsageError(format!("--force {f}: no stage of that name in {}", p.file)).into());
+        }
+    }
+    let selected: BTreeSet<usize> =
+        if target_idx.is_empty() { (0..p.stages.len()).collect() } else { graph::with_ancestors(p, &target_idx) };
+    let cache = if opts.dry_run { Cache::open_read_only(&opts.cache_dir) } else { Cache::open(&opts.cache_dir, opts.lock)? };
+    let pid = pipeline_id(p);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(opts.jobs.unwrap_or(0)).build()?;
+    let multi = indicatif::MultiProgress::with_draw_target(if opts.progress {
+        indicatif::ProgressDrawTarget::stderr()
+    } else {
+        indicatif::ProgressDrawTarget::hidden()
+    });
+
+    let order: Vec<usize> = graph::topological_order(p).into_iter().filter(|i| selected.contains(i)).collect();
+    let mut wave = vec![0usize; p.stages.len()];
+    for &i in &order {
+        for n in &p.stages[i].needs {
+            let j = p.stages.iter().position(|s| &s.name == n).unwrap();
+            wave[i] = wave[i].max(wave[j] + 1);
+        }
+    }
+    let n_waves = order.iter().map(|&i| wave[i] + 1).max().unwrap_or(0);
+    let mut states: BTreeMap<usize, StageState> = BTreeMap::new();
+    let mut records: Vec<TaskRecord> = Vec::new();
+    let mut manifests: Vec<(usize, StageManifest)> = Vec::new();
+
+    for w in 0..n_waves {
+        let stages_here: Vec<usize> = order.iter().copied().filter(|&i| wave[i] == w).collect();
+        let mut jobs: Vec<Job> = Vec::new();
+        // Per stage: the inputs' hashes, and for each point its cached output if any.
+        let mut plans: BTreeMap<usize, (BTreeMap<String, Hash>, Vec<Option<(Hash, Output)>>)> = BTreeMap::new();
+        for &si in &stages_here {
+            let stage = &p.stages[si];
+            let kind = registry.get(&stage.kind).expect("validated kinds");
+            let need_states: Vec<(&String, &StageState)> =
+                stage.needs.iter().map(|n| (n, &states[&p.stages.iter().position(|s| &s.name == n).unwrap()])).collect();
+            let blocked: Vec<&str> = need_states
+                .iter()
+                .filter(|(_, s)| matches!(s, StageState::Failed | StageState::Skipped))
+                .map(|(n, _)| n.as_str())
+                .collect();
+            let unknown = need_states.iter().any(|(_, s)| matches!(s, StageState::Unknown));
+            if !blocked.is_empty() || unknown {
+                let (status, state, reason) = if !blocked.is_empty() {
+                    (Status::Skipped, StageState::Skipped, format!("needs {} which did not complete", blocked.join(", ")))
+                } else {
+                    (Status::Unknown, StageState::Unknown, "upstream stages would run first".to_string())
+                };
+                for pt in &stage.points {
+                    records.push(TaskRecord {
+                        stage: stage.name.clone(),
+                        kind: stage.kind.clone(),
+                        point: pt.label.clone(),
+                        key: None,
+                        status,
+                        reason: Some(reason.clone()),
+                        wall_time_s: 0.0,
+                        error: None,
+                    });
+                }
+                states.insert(si, state);
+                continue;
+            }
+            let inputs: BTreeMap<String, Hash> = need_states
+                .iter()
+                .map(|(n, s)| match s {
+                    StageState::Done { hash, .. } => ((*n).clone(), hash.clone()),
+                    _ => unreachable!(),
+                })
+                .collect();
+            let prev = cache.read_manifest(&pid, &stage.name);
+            let forced = opts.force.contains(&stage.name);
+            let mut cached = Vec::with_capacity(stage.points.len());
+            for (pi, pt) in stage.points.iter().enumerate() {
+                let key = task_key(&stage.kind, kind.version(), &pt.params, &inputs);
+                let lookup = if forced { Err(Miss::Absent) } else { cache.get(&key) };
+                match lookup {
+                    Ok(entry) => {
+                        records.push(TaskRecord {
+                            stage: stage.name.clone(),
+                            kind: stage.kind.clone(),
+                            point: pt.label.clone(),
+                            key: Some(key.clone()),
+                            status: Status::Cached,
+                            reason: None,
+                            wall_time_s: 0.0,
+                            error: None,
+                        });
+                        cached.push(Some((key, entry.output)));
+                    }
+                    Err(miss) => {
+                        let reason = match miss {
+                            _ if forced => "forced (--force)".to_string(),
+                            Miss::Corrupted(why) => {
+                                eprintln!("repro: warning: cache entry {key} of stage `{}` is corrupted ({why}); recomputing it", stage.name);
+                                format!("corrupted cache entry ({why})")
+                            }
+                            Miss::Absent => stale_reason(prev.as_ref(), stage, kind.version(), &inputs, pt, &key),
+                        };
+                        jobs.push(Job { stage: si, point: pi, key, reason, params: &pt.params });
+                        cached.push(None);
+                    }
+                }
+            }
+            plans.insert(si, (inputs, cached));
+        }
+
+        // Compute (or, in a dry run, list) the jobs of this wave.
+        let mut results: BTreeMap<(usize, usize), Result<Output, String>> = BTreeMap::new();
+        if opts.dry_run {
+            for j in &jobs {
+                let stage = &p.stages[j.stage];
+                records.push(TaskRecord {
+                    stage: stage.name.clone(),
+                    kind: stage.kind.clone(),
+                    point: stage.points[j.point].label.clone(),
+                    key: Some(j.key.clone()),
+                    status: Status::WouldRun,
+                    reason: Some(j.reason.clone()),
+                    wall_time_s: 0.0,
+                    error: None,
+                });
+            }
+        } else if !jobs.is_empty() {
+            let mut bars: BTreeMap<usize, indicatif::ProgressBar> = BTreeMap::new();
+            for j in &jobs {
+                bars.entry(j.stage).or_insert_with(|| {
+                    let n = jobs.iter().filter(|k| k.stage == j.stage).count();
+                    make_bar(&multi, &p.stages[j.stage].name, n)
+                });
+            }
+            let input_tables: BTreeMap<usize, Inputs> = stages_here
+                .iter()
+                .filter(|si| plans.contains_key(si))
+                .map(|&si| {
+                    let tables = p.stages[si]
+                        .needs
+                        .iter()
+                        .map(|n| {
+                            let j = p.stages.iter().position(|s| &s.name == n).unwrap();
+                            match &states[&j] {
+                                StageState::Done { table, .. } => (n.clone(), table),
+                                _ => unreachable!(),
+                            }
+                        })
+                        .collect();
+                    (si, Inputs { tables })
+                })
+                .collect();
+            let outcomes: Vec<(usize, usize, Result<Output, String>, f64)> = pool.install(|| {
+                jobs.par_iter()
+                    .map(|j| {
+                        let stage = &p.stages[j.stage];
+                        let kind = registry.get(&stage.kind).unwrap();
+                        let t0 = Instant::now();
+                        let inputs = &input_tables[&j.stage];
+                        let res = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| kind.run(j.params, inputs)));
+                        let out = match res {
+                            Ok(Ok(out)) => out.table.check().map(|_| out).map_err(|e| format!("invalid output: {e:#}")),
+                            Ok(Err(e)) => Err(format!("{e:#}")),
+                            Err(panic) => Err(format!(
+                                "panicked: {}",
+                                panic
+                                    .downcast_ref::<String>()
+                                    .cloned()
+                                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                                    .unwrap_or_default()
+                            )),
+                        };
+                        let dt = t0.elapsed().as_secs_f64();
+                        let out = out.and_then(|o| {
+                            let entry = Entry::new(j.key.clone(), &stage.kind, kind.version(), j.params.clone(), o, dt);
+                            cache.put(&entry).map_err(|e| format!("writing the cache entry: {e:#}"))?;
+                            Ok(entry.output)
+                        });
+                        bars[&j.stage].inc(1);
+                        (j.stage, j.point, out, dt)
+                    })
+                    .collect()
+            });
+            for bar in bars.values() {
+                bar.finish();
+            }
+            for (j, (si, pi, out, dt)) in jobs.iter().zip(outcomes) {
+                let stage = &p.stages[si];
+                records.push(TaskRecord {
+                    stage: stage.name.clone(),
+                    kind: stage.kind.clone(),
+                    point: stage.points[pi].label.clone(),
+                    key: Some(j.key.clone()),
+                    status: if out.is_ok() { Status::Computed } else { Status::Failed },
+                    reason: Some(j.reason.clone()),
+                    wall_time_s: dt,
+                    error: out.as_ref().err().cloned(),
+                });
+                results.insert((si, pi), out);
+            }
+        }
+
+        // Assemble each stage of the wave.
+        for (si, (inputs, cached)) in plans {
+            let stage = &p.stages[si];
+            let kind = registry.get(&stage.kind).unwrap();
+            let mut points = Vec::with_capacity(cached.len());
+            let mut state_ok = true;
+            let mut unknown = false;
+            for (pi, c) in cached.into_iter().enumerate() {
+                match c {
+                    Some(kv) => points.push(kv),
+                    None => match results.remove(&(si, pi)) {
+                        Some(Ok(out)) => points.push((jobs.iter().find(|j| j.stage == si && j.point == pi).unwrap().key.clone(), out)),
+                        Some(Err(_)) => state_ok = false,
+                        None => unknown = true, // dry run
+                    },
+                }
+            }
+            let state = if unknown {
+                StageState::Unknown
+            } else if !state_ok {
+                StageState::Failed
+            } else {
+                let hashes: Vec<Hash> = points.iter().map(|(_, o)| super::cache::output_hash(o)).collect();
+                let mut table = Table::new();
+                for (_, o) in &points {
+                    table.append(&o.table).with_context(|| format!("assembling the table of stage `{}`", stage.name))?;
+                }
+                manifests.push((
+                    si,
+                    StageManifest {
+                        kind: stage.kind.clone(),
+                        version: kind.version(),
+                        inputs,
+                        points: stage
+                            .points
+                            .iter()
+                            .zip(&points)
+                            .map(|(pt, (k, _))| ManifestPoint { label: pt.label.clone(), params: pt.params.clone(), key: k.clone() })
+                            .collect(),
+                    },
+                ));
+                StageState::Done { hash: stage_hash(&hashes), table, points }
+            };
+            states.insert(si, state);
+        }
+    }
+    let _ = multi.clear();
+
+    let mut report = RunReport { pipeline: p.file.clone(), dry_run: opts.dry_run, tasks: records, ..Default::default() };
+    if !opts.dry_run {
+        for (si, m) in &manifests {
+            cache.write_manifest(&pid, &p.stages[*si].name, m)?;
+        }
+        for &si in &order {
+            if let Some(StageState::Done { points, .. }) = states.get(&si) {
+                report.published.extend(publish_stage(p, &p.stages[si], registry, points, opts)?);
+            }
+        }
+    }
+    report.wall_time_s = start.elapsed().as_secs_f64();
+    report.finalize_counts();
+    if !opts.dry_run {
+        super::cache::write_atomic(
+            &cache.root.join("runs").join("last.json"),
+            &serde_json::to_vec_pretty(&report)?,
+            &cache.tmp_dir(),
+        )?;
+    }
+    Ok(report)
+}
+
+/// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
+/// `figures/<stage>.<ext>` for each artifact and `figures/<stage>.parquet` for its data.
+fn publish_stage(p: &Pipeline, stage: &Stage, registry: &Registry, points: &[(Hash, Output)], opts: &RunOptions) -> Result<Vec<String>> {
+    let kind = registry.get(&stage.kind).unwrap();
+    let code_version = format!("{}@v{}", stage.kind, kind.version());
+    let table = provenance_table(points, &code_version)?;
+    let keys: Vec<&str> = points.iter().map(|(k, _)| k.as_str()).collect();
+    let metadata = vec![
+        ("repro.pipeline".to_string(), p.file.clone()),
+        ("repro.stage".to_string(), stage.name.clone()),
+        ("repro.code_version".to_string(), code_version),
+        ("repro.task_keys".to_string(), keys.join(",")),
+    ];
+    let is_figure = points.iter().any(|(_, o)| !o.artifacts.is_empty());
+    if is_figure && points.len() != 1 {
+        bail!("figure stage `{}` has {} points; a figure stage takes no sweep", stage.name, points.len());
+    }
+    let dir = if is_figure { &opts.figures_dir } else { &opts.tables_dir };
+    let mut written = Vec::new();
+    let pq = dir.join(format!("{}.parquet", stage.name));
+    if publish_file(&pq, &table.to_parquet_bytes(&metadata)?)? {
+        written.push(pq.display().to_string());
+    }
+    for (_, o) in points {
+        for (ext, text) in &o.artifacts {
+            let path = dir.join(format!("{}.{ext}", stage.name));
+            if publish_file(&path, text.as_bytes())? {
+                written.push(path.display().to_string());
+            }
+        }
+    }
+    Ok(written)
+}
+
+/// Removes cache entries that no task of the given pipelines refers to. Returns
+/// (entries kept, entries removed, bytes freed).
+pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path) -> Result<(usize, usize, u64)> {
+    let mut live: BTreeSet<String> = BTreeSet::new();
+    for p in pipelines {
+        let opts = RunOptions { cache_dir: cache_dir.to_path_buf(), dry_run: true, progress: false, ..Default::default() };
+        let report = run(p, registry, &opts)?;
+        live.extend(report.tasks.into_iter().filter_map(|t| t.key));
+    }
+    let cache = Cache::open(cache_dir, LockMode::Wait)?;
+    let (mut kept, mut removed, mut bytes) = (0, 0, 0);
+    for key in cache.all_keys()? {
+        if live.contains(&key) {
+            kept += 1;
+        } else {
+            bytes += cache.remove(&key)?;
+            removed += 1;
+        }
+    }
+    Ok((kept, removed, bytes))
+}

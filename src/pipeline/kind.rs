@@ -1,0 +1,163 @@
+//! The interface between the orchestrator and the code that computes: a stage kind.
+//!
+//! A kind declares its name, its code version, its parameters (a serde type, from which
+//! the JSON Schema is generated), which parameters may be swept, and how to run one point.
+//! The orchestrator knows kinds only through this trait; kinds know nothing of YAML,
+//! caches or files.
+
+use super::table::Table;
+use anyhow::Result;
+use schemars::JsonSchema;
+use serde::{de::DeserializeOwned, Serialize};
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+/// The assembled tables of the stages a task needs, by stage name.
+pub struct Inputs<'a> {
+    pub tables: BTreeMap<String, &'a Table>,
+}
+
+impl<'a> Inputs<'a> {
+    pub fn table(&self, stage: &str) -> Result<&'a Table> {
+        self.tables.get(stage).copied().ok_or_else(|| {
+            anyhow::anyhow!(
+                "stage `{stage}` is not among this stage's inputs (needs: {})",
+                self.tables.keys().cloned().collect::<Vec<_>>().join(", ")
+            )
+        })
+    }
+}
+
+/// What a task produces: a table and, for figures, text artifacts keyed by file extension.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Output {
+    pub table: Table,
+    #[serde(default)]
+    pub artifacts: BTreeMap<String, String>,
+}
+
+impl From<Table> for Output {
+    fn from(table: Table) -> Self {
+        Output { table, artifacts: BTreeMap::new() }
+    }
+}
+
+/// A problem with one parameter: its path (`k`, `layers[0].from`) and what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    pub path: String,
+    pub message: String,
+}
+
+impl FieldError {
+    pub fn new(path: &str, message: impl Into<String>) -> Self {
+        FieldError { path: path.to_string(), message: message.into() }
+    }
+}
+
+/// A stage kind, typed. Implement this; the registry wraps it.
+pub trait Kind: Send + Sync + 'static {
+    /// The name used in pipeline files, e.g. `theory.persson`.
+    const NAME: &'static str;
+    /// Bump when a change to the code can change this kind's outputs (see README).
+    const VERSION: u32;
+    /// One line for `repro kinds` and the schema.
+    const DOC: &'static str;
+    /// Parameters that may be given as a sweep (list, logspace, linspace).
+    const SWEEPABLE: &'static [&'static str] = &[];
+    type Params: DeserializeOwned + Serialize + JsonSchema + Send + Sync;
+
+    /// Physical and logical validity of one point's parameters.
+    fn validate(_p: &Self::Params) -> Vec<FieldError> {
+        Vec::new()
+    }
+    /// Stages named inside the parameters (with the parameter path), which must be in `needs`.
+    fn referenced_stages(_p: &Self::Params) -> Vec<(String, String)> {
+        Vec::new()
+    }
+    fn run(p: &Self::Params, inputs: &Inputs) -> Result<Output>;
+}
+
+/// The object-safe form of [`Kind`] that the orchestrator uses.
+pub trait DynKind: Send + Sync {
+    fn name(&self) -> &'static str;
+    fn version(&self) -> u32;
+    fn doc(&self) -> &'static str;
+    fn sweepable(&self) -> &'static [&'static str];
+    fn params_schema(&self) -> Value;
+    /// Parses and validates one point; returns its canonical parameters (defaults filled in)
+    /// and the stages it references.
+    fn check(&self, params: &Value) -> Result<(Value, Vec<(String, String)>), Vec<FieldError>>;
+    fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output>;
+}
+
+struct Typed<K: Kind>(std::marker::PhantomData<K>);
+
+fn parse<K: Kind>(params: &Value) -> Result<K::Params, FieldError> {
+    serde_path_to_error::deserialize::<_, K::Params>(params).map_err(|e| {
+        let path = e.path().to_string();
+        let path = if path == "." { String::new() } else { path };
+        FieldError { path, message: e.into_inner().to_string() }
+    })
+}
+
+impl<K: Kind> DynKind for Typed<K> {
+    fn name(&self) -> &'static str {
+        K::NAME
+    }
+    fn version(&self) -> u32 {
+        K::VERSION
+    }
+    fn doc(&self) -> &'static str {
+        K::DOC
+    }
+    fn sweepable(&self) -> &'static [&'static str] {
+        K::SWEEPABLE
+    }
+    fn params_schema(&self) -> Value {
+        serde_json::to_value(schemars::schema_for!(K::Params)).expect("schema serialises")
+    }
+    fn check(&self, params: &Value) -> Result<(Value, Vec<(String, String)>), Vec<FieldError>> {
+        let p = parse::<K>(params).map_err(|e| vec![e])?;
+        let errors = K::validate(&p);
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let canonical = serde_json::to_value(&p).expect("params serialise");
+        Ok((canonical, K::referenced_stages(&p)))
+    }
+    fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output> {
+        let p = parse::<K>(params).map_err(|e| anyhow::anyhow!("{}: {}", e.path, e.message))?;
+        K::run(&p, inputs)
+    }
+}
+
+/// The stage kinds a pipeline may use, by name.
+#[derive(Default)]
+pub struct Registry {
+    kinds: BTreeMap<&'static str, Box<dyn DynKind>>,
+}
+
+impl Registry {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn add<K: Kind>(&mut self) -> &mut Self {
+        let prev = self.kinds.insert(K::NAME, Box::new(Typed::<K>(std::marker::PhantomData)));
+        assert!(prev.is_none(), "stage kind {} registered twice", K::NAME);
+        self
+    }
+
+    pub fn get(&self, name: &str) -> Option<&dyn DynKind> {
+        self.kinds.get(name).map(|b| b.as_ref())
+    }
+
+    pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.kinds.keys().copied()
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &dyn DynKind> + '_ {
+        self.kinds.values().map(|b| b.as_ref())
+    }
+}

@@ -1,0 +1,13 @@
+//! The orchestrator: pipeline files, the stage graph, cache keys, the cache, the executor
+//! and the run report. It knows nothing of physics: stage kinds plug in through
+//! [`kind::Kind`].
+
+pub mod cache;
+pub mod executor;
+pub mod graph;
+pub mod key;
+pub mod kind;
+pub mod report;
+pub mod schema;
+pub mod spec;
+pub mod table;

@@ -1,0 +1,135 @@
+//! The run report: one record per task (written as JSON with `--report` and always to
+//! `cache/runs/last.json`), and the summary printed at the end of a run.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Computed in this run.
+    Computed,
+    /// Taken from the cache.
+    Cached,
+    /// The task returned an error or panicked.
+    Failed,
+    /// Not run because a stage it needs failed or was skipped.
+    Skipped,
+    /// Dry run: would be computed.
+    WouldRun,
+    /// Dry run: its key depends on outputs that are not computed yet.
+    Unknown,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct TaskRecord {
+    pub stage: String,
+    pub kind: String,
+    /// The sweep point (`lambda=0.1 k=0.1`), empty for an unswept stage.
+    pub point: String,
+    pub key: Option<String>,
+    pub status: Status,
+    /// Why it was computed (or would be): `never run`, `new sweep point`, ...
+    pub reason: Option<String>,
+    pub wall_time_s: f64,
+    pub error: Option<String>,
+}
+
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct RunReport {
+    pub pipeline: String,
+    pub dry_run: bool,
+    pub wall_time_s: f64,
+    pub counts: BTreeMap<String, usize>,
+    pub tasks: Vec<TaskRecord>,
+    /// Files written (or rewritten) by this run.
+    pub published: Vec<String>,
+}
+
+impl RunReport {
+    pub fn count(&self, s: Status) -> usize {
+        self.tasks.iter().filter(|t| t.status == s).count()
+    }
+
+    pub fn finalize_counts(&mut self) {
+        self.counts.clear();
+        for t in &self.tasks {
+            let name = serde_json::to_value(t.status).unwrap().as_str().unwrap().to_string();
+            *self.counts.entry(name).or_default() += 1;
+        }
+    }
+
+    pub fn any_failed(&self) -> bool {
+        self.count(Status::Failed) + self.count(Status::Skipped) > 0
+    }
+
+    /// A human summary: totals, then per stage what ran and why, then failures.
+    pub fn summary(&self, explain: bool) -> String {
+        let mut s = String::new();
+        let mut stages: Vec<&str> = Vec::new();
+        for t in &self.tasks {
+            if !stages.contains(&t.stage.as_str()) {
+                stages.push(&t.stage);
+            }
+        }
+        for stage in stages {
+            let tasks: Vec<&TaskRecord> = self.tasks.iter().filter(|t| t.stage == stage).collect();
+            let mut by_status: BTreeMap<Status, usize> = BTreeMap::new();
+            for t in &tasks {
+                *by_status.entry(t.status).or_default() += 1;
+            }
+            let parts: Vec<String> = by_status
+                .iter()
+                .map(|(st, n)| format!("{n} {}", serde_json::to_value(st).unwrap().as_str().unwrap().replace('_', " ")))
+                .collect();
+            // Reasons, grouped, for the tasks that ran or would run.
+            let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
+            for t in &tasks {
+                if let Some(r) = &t.reason {
+                    if matches!(t.status, Status::Computed | Status::WouldRun | Status::Failed) {
+                        *reasons.entry(r.clone()).or_default() += 1;
+                    }
+                }
+            }
+            let why = if reasons.is_empty() {
+                String::new()
+            } else {
+                let list: Vec<String> = reasons
+                    .iter()
+                    .take(3)
+                    .map(|(r, n)| if *n > 1 { format!("{r} ×{n}") } else { r.clone() })
+                    .collect();
+                let more = if reasons.len() > 3 { format!(", … {} more reasons", reasons.len() - 3) } else { String::new() };
+                format!(" ({}{more})", list.join("; "))
+            };
+            s.push_str(&format!("  {stage:<16} {}{why}\n", parts.join(", ")));
+            if explain {
+                for t in &tasks {
+                    let label = if t.point.is_empty() { "(single point)" } else { &t.point };
+                    let st = serde_json::to_value(t.status).unwrap().as_str().unwrap().to_string();
+                    let key = t.key.as_deref().map(|k| &k[..12]).unwrap_or("?");
+                    let why = t.reason.as_deref().unwrap_or("");
+                    s.push_str(&format!("      {label:<40} {key} {st:<9} {why}\n"));
+                }
+            }
+            for t in tasks.iter().filter(|t| t.status == Status::Failed) {
+                s.push_str(&format!(
+                    "      FAILED {}: {}\n",
+                    if t.point.is_empty() { "task" } else { &t.point },
+                    t.error.as_deref().unwrap_or("")
+                ));
+            }
+        }
+        let verb = if self.dry_run { "would compute" } else { "computed" };
+        let ran = if self.dry_run { self.count(Status::WouldRun) } else { self.count(Status::Computed) };
+        s.push_str(&format!(
+            "repro: {ran} {verb}, {} cached, {} failed, {} skipped{} in {:.2} s\n",
+            self.count(Status::Cached),
+            self.count(Status::Failed),
+            self.count(Status::Skipped),
+            if self.dry_run { format!(", {} unknown until upstream runs", self.count(Status::Unknown)) } else { String::new() },
+            self.wall_time_s
+        ));
+        s
+    }
+}

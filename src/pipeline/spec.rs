@@ -1,0 +1,588 @@
+//! The pipeline file: parsing, sweep expansion and validation, with errors that name the
+//! file, line and column.
+//!
+//! ```yaml
+//! stages:
+//!   - name: persson            # unique, [A-Za-z0-9_.-]
+//!     kind: theory.persson     # a registered stage kind
+//!     params:                  # checked against the kind's parameter type
+//!       inv_k: [1.1, 2, 10]    # a sweep: a list,
+//!       V0: {logspace: [-3, 3, 61]}   # or 10^from..10^to in n points, or {linspace: [from, to, n]}
+//!     needs: [other_stage]     # stages whose tables this stage reads
+//! ```
+//! A stage with sweeps expands into one point per element of the Cartesian product.
+//! Nothing is run when any error is found; all errors found are reported together.
+
+use super::kind::{FieldError, Registry};
+use marked_yaml::types::{MarkedMappingNode, Node};
+use serde_json::{Map, Number, Value};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+
+/// A place in a pipeline file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Location {
+    pub file: String,
+    pub line: usize,
+    pub column: usize,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+    }
+}
+
+/// One error in a pipeline file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub location: Location,
+    pub message: String,
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: error: {}", self.location, self.message)
+    }
+}
+
+/// All the errors found in an invalid pipeline file.
+#[derive(Debug)]
+pub struct InvalidPipeline(pub Vec<Diagnostic>);
+
+impl fmt::Display for InvalidPipeline {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, d) in self.0.iter().enumerate() {
+            if i > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for InvalidPipeline {}
+
+/// One point of a stage: its canonical parameters (sorted keys, defaults filled in).
+#[derive(Clone, Debug)]
+pub struct Point {
+    pub params: Value,
+    /// `lambda=0.1 k=0.1` for the swept parameters, empty for an unswept stage.
+    pub label: String,
+}
+
+#[derive(Clone, Debug)]
+pub struct Stage {
+    pub name: String,
+    pub kind: String,
+    pub needs: Vec<String>,
+    pub points: Vec<Point>,
+    pub location: Location,
+}
+
+#[derive(Clone, Debug)]
+pub struct Pipeline {
+    pub file: String,
+    pub description: String,
+    pub stages: Vec<Stage>,
+}
+
+impl Pipeline {
+    pub fn stage(&self, name: &str) -> Option<&Stage> {
+        self.stages.iter().find(|s| s.name == name)
+    }
+}
+
+/// Reads and validates a pipeline file.
+pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.clone(), line: 0, column: 0 },
+            message: format!("cannot read the pipeline file: {e}"),
+        }])
+    })?;
+    parse(&file, &text, registry)
+}
+
+struct Ctx<'a> {
+    file: &'a str,
+    errors: Vec<Diagnostic>,
+}
+
+impl Ctx<'_> {
+    fn loc(&self, node: &Node) -> Location {
+        span_location(self.file, node.span())
+    }
+    fn err(&mut self, location: Location, message: impl Into<String>) {
+        self.errors.push(Diagnostic { location, message: message.into() });
+    }
+}
+
+fn span_location(file: &str, span: &marked_yaml::Span) -> Location {
+    let (line, column) = span.start().map_or((0, 0), |m| (m.line(), m.column()));
+    Location { file: file.to_string(), line, column }
+}
+
+fn marker_location(file: &str, m: &marked_yaml::Marker) -> Location {
+    Location { file: file.to_string(), line: m.line(), column: m.column() }
+}
+
+fn load_error(file: &str, e: marked_yaml::LoadError) -> Diagnostic {
+    use marked_yaml::LoadError::*;
+    let (location, message) = match &e {
+        TopLevelMustBeMapping(m) => {
+            (marker_location(file, m), "the top level must be a mapping with a `stages` list".to_string())
+        }
+        TopLevelMustBeSequence(m) | UnexpectedAnchor(m) | MappingKeyMustBeScalar(m) | UnexpectedTag(m) => {
+            (marker_location(file, m), strip_marker(&e.to_string()))
+        }
+        ScanError(m, _) => (marker_location(file, m), format!("invalid YAML: {}", strip_marker(&e.to_string()))),
+        DuplicateKey(inner) => (
+            span_location(file, inner.key.span()),
+            format!(
+                "duplicate key `{}` (first given at line {})",
+                inner.key.as_str(),
+                inner.prev_key.span().start().map_or(0, |m| m.line())
+            ),
+        ),
+    };
+    Diagnostic { location, message }
+}
+
+fn strip_marker(s: &str) -> String {
+    // marked_yaml prefixes messages with its own marker; we print ours.
+    match s.split_once(": ") {
+        Some((head, rest)) if head.chars().any(|c| c.is_ascii_digit()) => rest.to_string(),
+        _ => s.to_string(),
+    }
+}
+
+/// Parses pipeline text (exposed for tests).
+pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
+    let root = marked_yaml::parse_yaml_with_options(0, text, options)
+        .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
+    let mut cx = Ctx { file, errors: Vec::new() };
+    let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
+    check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
+    let description = root_map
+        .get_scalar("description")
+        .map(|s| s.as_str().to_string())
+        .unwrap_or_default();
+    let mut stages = Vec::new();
+    match root_map.get_node("stages") {
+        None => cx.err(cx.loc(&root), "missing `stages`: a pipeline is a list of stages"),
+        Some(Node::Sequence(seq)) => {
+            for node in seq.iter() {
+                if let Some(s) = parse_stage(&mut cx, node, registry) {
+                    stages.push(s);
+                }
+            }
+        }
+        Some(other) => cx.err(cx.loc(other), "`stages` must be a list of stages"),
+    }
+    check_graph(&mut cx, &stages);
+    if cx.errors.is_empty() {
+        Ok(Pipeline { file: file.to_string(), description, stages: stages.into_iter().map(|s| s.stage).collect() })
+    } else {
+        cx.errors.sort_by_key(|d| (d.location.line, d.location.column));
+        Err(InvalidPipeline(cx.errors))
+    }
+}
+
+fn check_keys(cx: &mut Ctx, map: &MarkedMappingNode, allowed: &[&str], what: &str) {
+    for key in map.keys() {
+        if !allowed.contains(&key.as_str()) {
+            cx.err(
+                span_location(cx.file, key.span()),
+                format!("unknown field `{}` in {what} (expected one of: {})", key.as_str(), allowed.join(", ")),
+            );
+        }
+    }
+}
+
+struct ParsedStage {
+    stage: Stage,
+    need_locations: Vec<Location>,
+}
+
+fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedStage> {
+    let Some(map) = node.as_mapping() else {
+        cx.err(cx.loc(node), "a stage must be a mapping with `name`, `kind`, `params` and `needs`");
+        return None;
+    };
+    check_keys(cx, map, &["name", "kind", "params", "needs", "description"], "a stage");
+    let name = match map.get_node("name") {
+        Some(Node::Scalar(s)) if is_valid_name(s.as_str()) => s.as_str().to_string(),
+        Some(n) => {
+            cx.err(cx.loc(n), "a stage name must be a non-empty string of letters, digits, `_`, `-` or `.`");
+            return None;
+        }
+        None => {
+            cx.err(cx.loc(node), "missing field `name` in a stage");
+            return None;
+        }
+    };
+    let kind_node = match map.get_node("kind") {
+        Some(n @ Node::Scalar(_)) => n,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `kind` must be a string"));
+            return None;
+        }
+        None => {
+            cx.err(cx.loc(node), format!("missing field `kind` in stage `{name}`"));
+            return None;
+        }
+    };
+    let kind_name = kind_node.as_scalar().unwrap().as_str().to_string();
+    let mut needs = Vec::new();
+    let mut need_locations = Vec::new();
+    match map.get_node("needs") {
+        None => {}
+        Some(Node::Sequence(seq)) => {
+            for n in seq.iter() {
+                match n {
+                    Node::Scalar(s) => {
+                        needs.push(s.as_str().to_string());
+                        need_locations.push(cx.loc(n));
+                    }
+                    _ => cx.err(cx.loc(n), format!("stage `{name}`: each entry of `needs` must be a stage name")),
+                }
+            }
+        }
+        Some(n) => cx.err(cx.loc(n), format!("stage `{name}`: `needs` must be a list of stage names")),
+    }
+    let Some(kind) = registry.get(&kind_name) else {
+        let known: Vec<_> = registry.names().collect();
+        let hint = suggestion(&kind_name, &known).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+        cx.err(
+            cx.loc(kind_node),
+            format!("stage `{name}`: unknown stage kind `{kind_name}`{hint}; known kinds: {}", known.join(", ")),
+        );
+        return None;
+    };
+    let empty;
+    let params_map = match map.get_node("params") {
+        None => {
+            empty = MarkedMappingNode::new_empty(*node.span());
+            &empty
+        }
+        Some(Node::Mapping(m)) => m,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `params` must be a mapping of parameter names to values"));
+            return None;
+        }
+    };
+    let points = expand_points(cx, &name, params_map, kind.sweepable())?;
+    let mut checked = Vec::with_capacity(points.len());
+    let mut referenced: BTreeSet<(String, String)> = BTreeSet::new();
+    for p in points {
+        match kind.check(&p.value) {
+            Ok((canonical, refs)) => {
+                referenced.extend(refs);
+                checked.push(Point { params: canonical, label: p.label });
+            }
+            Err(errors) => {
+                for e in errors {
+                    let location = locate(cx, params_map, &p.swept_nodes, &e);
+                    let point = if p.label.is_empty() { String::new() } else { format!(" (at sweep point {})", p.label) };
+                    cx.err(location, format!("stage `{name}` ({kind_name}){point}: {}", describe(&e)));
+                }
+                // One point's structural errors repeat at every point: report them once.
+                return None;
+            }
+        }
+    }
+    for (path, stage) in referenced {
+        if !needs.contains(&stage) {
+            let location = locate(cx, params_map, &BTreeMap::new(), &FieldError::new(&path, ""));
+            cx.err(location, format!("stage `{name}`: `{path}` refers to stage `{stage}`, which is not in its `needs`"));
+        }
+    }
+    Some(ParsedStage {
+        stage: Stage { name, kind: kind_name, needs, points: checked, location: cx.loc(node) },
+        need_locations,
+    })
+}
+
+fn describe(e: &FieldError) -> String {
+    if e.path.is_empty() {
+        e.message.clone()
+    } else {
+        format!("parameter `{}`: {}", e.path, e.message)
+    }
+}
+
+fn is_valid_name(s: &str) -> bool {
+    !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+}
+
+/// The known name closest to `name`, if it is close (edit distance at most 3).
+fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
+    fn distance(a: &str, b: &str) -> usize {
+        let b: Vec<char> = b.chars().collect();
+        let mut prev: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut cur = vec![i + 1];
+            for (j, cb) in b.iter().enumerate() {
+                cur.push((prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1));
+            }
+            prev = cur;
+        }
+        prev[b.len()]
+    }
+    known.iter().map(|k| (distance(name, k), *k)).filter(|(d, _)| *d <= 3).min().map(|(_, k)| k)
+}
+
+/// Converts a YAML node to JSON: unquoted scalars become null, booleans or numbers where
+/// they read as such; quoted scalars stay strings.
+pub fn to_json(node: &Node) -> Value {
+    match node {
+        Node::Scalar(s) => {
+            let text = s.as_str();
+            if !s.may_coerce() {
+                return Value::String(text.to_string());
+            }
+            match text {
+                "" | "~" | "null" | "Null" | "NULL" => Value::Null,
+                "true" | "True" | "TRUE" => Value::Bool(true),
+                "false" | "False" | "FALSE" => Value::Bool(false),
+                _ => {
+                    if let Ok(i) = text.parse::<i64>() {
+                        Value::Number(i.into())
+                    } else if let Some(n) = text.parse::<f64>().ok().and_then(Number::from_f64) {
+                        // from_f64 refuses NaN and infinities, which stay strings (and fail type checks).
+                        Value::Number(n)
+                    } else {
+                        Value::String(text.to_string())
+                    }
+                }
+            }
+        }
+        Node::Sequence(seq) => Value::Array(seq.iter().map(to_json).collect()),
+        Node::Mapping(map) => {
+            Value::Object(map.iter().map(|(k, v)| (k.as_str().to_string(), to_json(v))).collect())
+        }
+    }
+}
+
+struct RawPoint<'a> {
+    value: Value,
+    label: String,
+    swept_nodes: BTreeMap<String, &'a Node>,
+}
+
+/// The values of one swept parameter, with the node each value comes from.
+fn sweep_values<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> Option<Vec<(f64, &'a Node)>> {
+    let number = |cx: &mut Ctx, n: &Node, what: &str| -> Option<f64> {
+        match to_json(n).as_f64() {
+            Some(x) => Some(x),
+            None => {
+                cx.err(cx.loc(n), format!("stage `{stage}`: parameter `{param}`: {what} must be a number"));
+                None
+            }
+        }
+    };
+    match node {
+        Node::Sequence(seq) => {
+            if seq.is_empty() {
+                cx.err(cx.loc(node), format!("stage `{stage}`: parameter `{param}`: an empty sweep"));
+                return None;
+            }
+            let vals: Vec<_> = seq.iter().map(|n| number(cx, n, "each sweep value").map(|x| (x, n))).collect();
+            vals.into_iter().collect()
+        }
+        Node::Mapping(map) if map.len() == 1 => {
+            let (key, body) = map.iter().next().unwrap();
+            let form = key.as_str();
+            if form != "logspace" && form != "linspace" {
+                cx.err(
+                    span_location(cx.file, key.span()),
+                    format!("stage `{stage}`: parameter `{param}`: unknown sweep `{form}` (expected a list, `logspace` or `linspace`)"),
+                );
+                return None;
+            }
+            let items = match body {
+                Node::Sequence(s) if s.len() == 3 => s,
+                _ => {
+                    cx.err(cx.loc(body), format!("stage `{stage}`: parameter `{param}`: `{form}` takes [from, to, n]"));
+                    return None;
+                }
+            };
+            let a = number(cx, &items[0], "`from`")?;
+            let b = number(cx, &items[1], "`to`")?;
+            let n = match to_json(&items[2]).as_u64() {
+                Some(n) if n >= 1 && n <= 100_000 => n as usize,
+                _ => {
+                    cx.err(cx.loc(&items[2]), format!("stage `{stage}`: parameter `{param}`: `n` must be an integer from 1 to 100000"));
+                    return None;
+                }
+            };
+            if form == "logspace" && (a.abs() > 300.0 || b.abs() > 300.0) {
+                cx.err(
+                    cx.loc(body),
+                    format!("stage `{stage}`: parameter `{param}`: logspace takes decimal exponents ([-3, 3, 61] is 1e-3..1e3), got {a} and {b}"),
+                );
+                return None;
+            }
+            Some((0..n).map(|i| (spaced(form == "logspace", a, b, n, i), node)).collect())
+        }
+        _ => number(cx, node, "a swept value").map(|x| vec![(x, node)]),
+    }
+}
+
+/// The i-th of n points from a to b, linear or in decimal exponents, rounded to 12
+/// significant digits so that `{logspace: [-1, 1, 3]}` gives exactly the list [0.1, 1, 10].
+pub fn spaced(log: bool, a: f64, b: f64, n: usize, i: usize) -> f64 {
+    let t = if n == 1 { 0.0 } else { i as f64 / (n - 1) as f64 };
+    let x = a + (b - a) * t;
+    let v = if log { 10f64.powf(x) } else { x };
+    format!("{v:.11e}").parse().unwrap()
+}
+
+fn expand_points<'a>(
+    cx: &mut Ctx,
+    stage: &str,
+    params: &'a MarkedMappingNode,
+    sweepable: &[&str],
+) -> Option<Vec<RawPoint<'a>>> {
+    let mut fixed = Map::new();
+    let mut axes: Vec<(String, Vec<(f64, &'a Node)>)> = Vec::new();
+    let mut ok = true;
+    for (key, node) in params.iter() {
+        let name = key.as_str().to_string();
+        if sweepable.contains(&name.as_str()) {
+            match sweep_values(cx, stage, &name, node) {
+                Some(v) if v.len() == 1 && !matches!(node, Node::Sequence(_)) => {
+                    fixed.insert(name, json_number(v[0].0));
+                }
+                Some(v) => axes.push((name, v)),
+                None => ok = false,
+            }
+        } else {
+            fixed.insert(name, to_json(node));
+        }
+    }
+    if !ok {
+        return None;
+    }
+    let total: usize = axes.iter().map(|(_, v)| v.len()).product();
+    if total > 1_000_000 {
+        cx.err(cx.loc(&Node::Mapping(params.clone())), format!("stage `{stage}`: the sweep has {total} points (more than a million)"));
+        return None;
+    }
+    let mut points = Vec::with_capacity(total);
+    for idx in 0..total {
+        let mut value = fixed.clone();
+        let mut labels = Vec::new();
+        let mut swept_nodes = BTreeMap::new();
+        let mut rem = idx;
+        // The last axis varies fastest.
+        let mut picks = vec![0; axes.len()];
+        for (a, (_, vals)) in axes.iter().enumerate().rev() {
+            picks[a] = rem % vals.len();
+            rem /= vals.len();
+        }
+        for ((name, vals), &pick) in axes.iter().zip(&picks) {
+            let (x, node) = vals[pick];
+            value.insert(name.clone(), json_number(x));
+            labels.push(format!("{name}={}", super::table::format_number(x)));
+            swept_nodes.insert(name.clone(), node);
+        }
+        points.push(RawPoint { value: Value::Object(value), label: labels.join(" "), swept_nodes });
+    }
+    Some(points)
+}
+
+fn json_number(x: f64) -> Value {
+    if x.fract() == 0.0 && x.abs() < 9.0e15 {
+        Value::Number((x as i64).into())
+    } else {
+        Number::from_f64(x).map_or(Value::Null, Value::Number)
+    }
+}
+
+/// The location of the deepest node on `err.path` (a swept parameter's node for this point).
+fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>, err: &FieldError) -> Location {
+    let segments = split_path(&err.path);
+    let params_node_loc = span_location(cx.file, params.span());
+    let Some((first, rest)) = segments.split_first() else {
+        return params_node_loc;
+    };
+    let mut node: &Node = match swept.get(first.as_str()) {
+        Some(n) => n,
+        None => match params.get_node(first) {
+            Some(n) => n,
+            None => {
+                // An unknown field is reported at its key; a missing one at the params mapping.
+                return params
+                    .keys()
+                    .find(|k| k.as_str() == first)
+                    .map_or(params_node_loc, |k| span_location(cx.file, k.span()));
+            }
+        },
+    };
+    for seg in rest {
+        let next = match (node, seg.parse::<usize>()) {
+            (Node::Sequence(s), Ok(i)) => s.get(i),
+            (Node::Mapping(m), _) => m.get_node(seg),
+            _ => None,
+        };
+        match next {
+            Some(n) => node = n,
+            None => break,
+        }
+    }
+    cx.loc(node)
+}
+
+/// `layers[0].from` -> [layers, 0, from].
+fn split_path(path: &str) -> Vec<String> {
+    path.split(['.', '['])
+        .filter(|s| !s.is_empty())
+        .map(|s| s.trim_end_matches(']').to_string())
+        .collect()
+}
+
+fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
+    let mut index = BTreeMap::new();
+    for (i, s) in stages.iter().enumerate() {
+        if let Some(&j) = index.get(s.stage.name.as_str()) {
+            let first: &ParsedStage = &stages[j];
+            cx.err(
+                s.stage.location.clone(),
+                format!("duplicate stage name `{}` (first defined at line {})", s.stage.name, first.stage.location.line),
+            );
+        } else {
+            index.insert(s.stage.name.as_str(), i);
+        }
+    }
+    let mut graph = petgraph::graphmap::DiGraphMap::<usize, ()>::new();
+    for i in 0..stages.len() {
+        graph.add_node(i);
+    }
+    for (i, s) in stages.iter().enumerate() {
+        for (need, loc) in s.stage.needs.iter().zip(&s.need_locations) {
+            match index.get(need.as_str()) {
+                Some(&j) => {
+                    graph.add_edge(j, i, ());
+                }
+                None => {
+                    let names: Vec<&str> = index.keys().copied().collect();
+                    let hint = suggestion(need, &names).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+                    cx.err(loc.clone(), format!("stage `{}` needs `{need}`, which names no stage{hint}", s.stage.name));
+                }
+            }
+        }
+    }
+    for cycle in super::graph::cycles(&graph) {
+        let names: Vec<&str> = cycle.iter().map(|&i| stages[i].stage.name.as_str()).collect();
+        let first = cycle[0];
+        cx.err(
+            stages[first].stage.location.clone(),
+            format!("the stages form a cycle: {} -> {}", names.join(" -> "), names[0]),
+        );
+    }
+}

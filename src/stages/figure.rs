@@ -1,0 +1,411 @@
+//! The `figure` kind: a paper-style x–y plot (plotters, SVG) of columns from the tables of
+//! the stages it needs, with optional power-law guide lines. Its table is the plotted
+//! data in long format: `series`, `x`, `y`, `x_name`, `y_name` (one row per point).
+//! Log axes are drawn by plotting log10 values on a linear axis labelled in powers of ten.
+
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
+use crate::pipeline::table::{format_number, ColumnData, Table};
+use anyhow::{bail, Context, Result};
+use plotters::prelude::*;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Style {
+    #[default]
+    Line,
+    Dashed,
+    Points,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LegendPosition {
+    #[default]
+    UpperRight,
+    UpperLeft,
+    LowerRight,
+    LowerLeft,
+}
+
+/// Curves from a stage's table.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DataLayer {
+    /// The stage whose table is plotted (must be in `needs`).
+    pub from: String,
+    /// Column for the horizontal axis.
+    pub x: String,
+    /// Column for the vertical axis.
+    pub y: String,
+    /// One curve per distinct value of this column.
+    #[serde(default)]
+    pub group_by: Option<String>,
+    /// Legend label; `{column}` is replaced by that column's value for the curve.
+    pub label: String,
+    #[serde(default)]
+    pub style: Style,
+    /// Keep only rows where each named column equals the given value.
+    #[serde(default)]
+    pub filter: BTreeMap<String, f64>,
+    /// Scale the y values by this factor.
+    #[serde(default = "one")]
+    pub y_scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A power law y = y0 (x / x0)^slope drawn from x_from to x_to.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GuideLayer {
+    pub slope: f64,
+    /// A point (x0, y0) on the line.
+    pub through: [f64; 2],
+    pub x_from: f64,
+    pub x_to: f64,
+    pub label: String,
+    #[serde(default = "dashed")]
+    pub style: Style,
+}
+
+fn dashed() -> Style {
+    Style::Dashed
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Layer {
+    Data(DataLayer),
+    Guide(GuideLayer),
+}
+
+fn default_width() -> u32 {
+    800
+}
+fn default_height() -> u32 {
+    560
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FigureParams {
+    pub title: String,
+    /// Axis label, with units or the dimensionless symbol.
+    pub x_label: String,
+    pub y_label: String,
+    #[serde(default)]
+    pub log_x: bool,
+    #[serde(default)]
+    pub log_y: bool,
+    /// Axis ranges (data units); default: the data's extent.
+    #[serde(default)]
+    pub x_range: Option<[f64; 2]>,
+    #[serde(default)]
+    pub y_range: Option<[f64; 2]>,
+    #[serde(default = "default_width")]
+    pub width: u32,
+    #[serde(default = "default_height")]
+    pub height: u32,
+    #[serde(default)]
+    pub legend: LegendPosition,
+    pub layers: Vec<Layer>,
+}
+
+struct Series {
+    label: String,
+    style: Style,
+    x_name: String,
+    y_name: String,
+    points: Vec<(f64, f64)>,
+}
+
+/// Curves of one data layer, in the order their group values first appear.
+fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
+    let t = inputs.table(&layer.from)?;
+    let xs = t.f64_column(&layer.x).with_context(|| format!("layer from `{}`", layer.from))?;
+    let ys = t.f64_column(&layer.y).with_context(|| format!("layer from `{}`", layer.from))?;
+    let mut keep = vec![true; t.n_rows()];
+    for (col, value) in &layer.filter {
+        let c = t.f64_column(col).with_context(|| format!("filter of layer from `{}`", layer.from))?;
+        for (k, v) in keep.iter_mut().zip(c) {
+            *k &= (v - value).abs() <= 1e-9 * value.abs().max(1e-300);
+        }
+    }
+    let group: Option<&ColumnData> = match &layer.group_by {
+        Some(g) => Some(t.column(g).with_context(|| format!("no column `{g}` to group by in `{}`", layer.from))?),
+        None => None,
+    };
+    let mut order: Vec<String> = Vec::new();
+    let mut groups: BTreeMap<String, (usize, Vec<(f64, f64)>)> = BTreeMap::new();
+    for row in 0..t.n_rows() {
+        if !keep[row] {
+            continue;
+        }
+        let gkey = group.map(|g| g.display_at(row)).unwrap_or_default();
+        if !groups.contains_key(&gkey) {
+            order.push(gkey.clone());
+            groups.insert(gkey.clone(), (row, Vec::new()));
+        }
+        groups.get_mut(&gkey).unwrap().1.push((xs[row], ys[row] * layer.y_scale));
+    }
+    Ok(order
+        .into_iter()
+        .map(|g| {
+            let (first_row, points) = groups.remove(&g).unwrap();
+            let mut label = layer.label.clone();
+            for (name, col) in &t.columns {
+                let pat = format!("{{{name}}}");
+                if label.contains(&pat) {
+                    label = label.replace(&pat, &col.display_at(first_row));
+                }
+            }
+            Series { label, style: layer.style, x_name: layer.x.clone(), y_name: layer.y.clone(), points }
+        })
+        .collect())
+}
+
+fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
+    let n = 50;
+    let points = (0..n)
+        .map(|i| {
+            let t = i as f64 / (n - 1) as f64;
+            let x = if log_x { g.x_from * (g.x_to / g.x_from).powf(t) } else { g.x_from + (g.x_to - g.x_from) * t };
+            (x, g.through[1] * (x / g.through[0]).powf(g.slope))
+        })
+        .collect();
+    Series { label: g.label.clone(), style: g.style, x_name: "guide".into(), y_name: "guide".into(), points }
+}
+
+const PALETTE: [RGBColor; 11] = [
+    RGBColor(0, 0, 0),
+    RGBColor(188, 189, 34),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+    RGBColor(23, 190, 207),
+];
+
+/// "10⁻³" for an integer exponent.
+fn power_of_ten(e: i32) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let digits: String = e.unsigned_abs().to_string().chars().map(|c| SUP[c.to_digit(10).unwrap() as usize]).collect();
+    format!("10{}{digits}", if e < 0 { "⁻" } else { "" })
+}
+
+fn axis_label(v: f64, log: bool) -> String {
+    if log {
+        let r = v.round();
+        if (v - r).abs() < 1e-6 {
+            power_of_ten(r as i32)
+        } else {
+            String::new()
+        }
+    } else {
+        format_number(v)
+    }
+}
+
+/// The range of the transformed values, padded by 3% on linear axes.
+fn extent(given: Option<[f64; 2]>, log: bool, values: impl Iterator<Item = f64>) -> Result<(f64, f64)> {
+    let (lo, hi) = match given {
+        Some([a, b]) => {
+            if log && (a <= 0.0 || b <= 0.0) {
+                bail!("a log axis needs a positive range, got [{a}, {b}]");
+            }
+            if log {
+                (a.log10(), b.log10())
+            } else {
+                (a, b)
+            }
+        }
+        None => {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for v in values {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            if !lo.is_finite() {
+                bail!("nothing to plot");
+            }
+            if log {
+                (lo.floor(), hi.ceil().max(lo.floor() + 1.0))
+            } else {
+                let pad = 0.03 * (hi - lo).max(1e-12);
+                (lo - pad, hi + pad)
+            }
+        }
+    };
+    if !(hi > lo) {
+        bail!("empty axis range [{lo}, {hi}]");
+    }
+    Ok((lo, hi))
+}
+
+fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
+    let tx = |x: f64| if p.log_x { x.log10() } else { x };
+    let ty = |y: f64| if p.log_y { y.log10() } else { y };
+    let xs = series.iter().flat_map(|s| s.points.iter().map(|q| tx(q.0)));
+    let ys = series.iter().flat_map(|s| s.points.iter().map(|q| ty(q.1)));
+    let (x0, x1) = extent(p.x_range, p.log_x, xs)?;
+    let (y0, y1) = extent(p.y_range, p.log_y, ys)?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (p.width, p.height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&p.title, ("sans-serif", 22))
+            .margin(18)
+            .x_label_area_size(52)
+            .y_label_area_size(72)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let fx = |v: &f64| axis_label(*v, p.log_x);
+        let fy = |v: &f64| axis_label(*v, p.log_y);
+        let n_x = if p.log_x { ((x1 - x0).round() as usize + 1).clamp(2, 13) } else { 8 };
+        let n_y = if p.log_y { ((y1 - y0).round() as usize + 1).clamp(2, 13) } else { 8 };
+        chart
+            .configure_mesh()
+            .x_desc(p.x_label.as_str())
+            .y_desc(p.y_label.as_str())
+            .x_labels(n_x)
+            .y_labels(n_y)
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
+            .axis_desc_style(("sans-serif", 18))
+            .label_style(("sans-serif", 14))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .draw()
+            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let inside = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
+        for (i, s) in series.iter().enumerate() {
+            let color = PALETTE[i % PALETTE.len()];
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (tx(x), ty(y))).filter(inside).collect();
+            let err = |e| anyhow::anyhow!("{e:?}");
+            let anno = match s.style {
+                Style::Line => chart.draw_series(LineSeries::new(pts, style)).map_err(err)?,
+                Style::Dashed => chart.draw_series(DashedLineSeries::new(pts, 8, 5, style)).map_err(err)?,
+                Style::Points => chart
+                    .draw_series(pts.into_iter().map(|q| Circle::new(q, 3, color.filled())))
+                    .map_err(err)?,
+            };
+            let legend_style = style;
+            if s.style == Style::Points {
+                anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
+            } else {
+                anno.label(s.label.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
+            }
+        }
+        let pos = match p.legend {
+            LegendPosition::UpperRight => SeriesLabelPosition::UpperRight,
+            LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
+            LegendPosition::LowerRight => SeriesLabelPosition::LowerRight,
+            LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
+        };
+        chart
+            .configure_series_labels()
+            .position(pos)
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(120, 120, 120))
+            .label_font(("sans-serif", 14))
+            .draw()
+            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        root.present().map_err(|e| anyhow::anyhow!("{e:?}"))?;
+    }
+    Ok(svg)
+}
+
+pub struct Figure;
+
+impl Kind for Figure {
+    const NAME: &'static str = "figure";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
+    type Params = FigureParams;
+
+    fn validate(p: &FigureParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        if p.layers.is_empty() {
+            e.push(FieldError::new("layers", "a figure needs at least one layer"));
+        }
+        for (name, r, log) in [("x_range", p.x_range, p.log_x), ("y_range", p.y_range, p.log_y)] {
+            if let Some([a, b]) = r {
+                if !(b > a) || (log && a <= 0.0) {
+                    e.push(FieldError::new(name, format!("needs from < to{}, got [{a}, {b}]", if log { " and a positive start (log axis)" } else { "" })));
+                }
+            }
+        }
+        for (i, l) in p.layers.iter().enumerate() {
+            if let Layer::Guide(g) = l {
+                if !(g.through[0] > 0.0 && g.x_from > 0.0 && g.x_to > g.x_from) {
+                    e.push(FieldError::new(&format!("layers[{i}].guide"), "needs positive x values with x_from < x_to"));
+                }
+            }
+        }
+        if !(100..=4000).contains(&p.width) || !(100..=4000).contains(&p.height) {
+            e.push(FieldError::new("width", "width and height must lie in 100..=4000 pixels"));
+        }
+        e
+    }
+
+    fn referenced_stages(p: &FigureParams) -> Vec<(String, String)> {
+        p.layers
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| match l {
+                Layer::Data(d) => Some((format!("layers[{i}].data.from"), d.from.clone())),
+                Layer::Guide(_) => None,
+            })
+            .collect()
+    }
+
+    fn run(p: &FigureParams, inputs: &Inputs) -> Result<Output> {
+        let mut series = Vec::new();
+        for l in &p.layers {
+            match l {
+                Layer::Data(d) => series.extend(data_series(d, inputs)?),
+                Layer::Guide(g) => series.push(guide_series(g, p.log_x)),
+            }
+        }
+        // On log axes, points at or below zero cannot be drawn: leave them out of both the
+        // figure and its table.
+        for s in &mut series {
+            s.points.retain(|&(x, y)| (!p.log_x || x > 0.0) && (!p.log_y || y > 0.0));
+        }
+        let svg = render(p, &series)?;
+        let mut cols: (Vec<String>, Vec<f64>, Vec<f64>, Vec<String>, Vec<String>) = Default::default();
+        for s in &series {
+            for &(x, y) in &s.points {
+                cols.0.push(s.label.clone());
+                cols.1.push(x);
+                cols.2.push(y);
+                cols.3.push(s.x_name.clone());
+                cols.4.push(s.y_name.clone());
+            }
+        }
+        let table = Table::new()
+            .with("series", ColumnData::Str(cols.0))
+            .with_f64("x", cols.1)
+            .with_f64("y", cols.2)
+            .with("x_name", ColumnData::Str(cols.3))
+            .with("y_name", ColumnData::Str(cols.4));
+        let mut out = Output::from(table);
+        out.artifacts.insert("svg".into(), svg);
+        Ok(out)
+    }
+}
+
+pub fn register(r: &mut crate::pipeline::kind::Registry) {
+    r.add::<Figure>();
+}

@@ -1,0 +1,372 @@
+//! Stage kinds for the closed-form theories: classical sphere contact (Hertz, JKR, DMT,
+//! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
+
+use super::check;
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::table::{ColumnData, Table};
+use crate::theory::{classical, persson, persson_brener};
+use anyhow::{bail, Result};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+fn default_a_min() -> f64 {
+    0.02
+}
+fn default_a_max() -> f64 {
+    2.5
+}
+fn default_n() -> usize {
+    200
+}
+fn default_rel_tol() -> f64 {
+    1e-8
+}
+
+/// Log-spaced contact radii from a_min to a_max.
+fn radii(a_min: f64, a_max: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|i| a_min * (a_max / a_min).powf(i as f64 / (n - 1) as f64)).collect()
+}
+
+fn check_radii(e: &mut Vec<FieldError>, a_min: f64, a_max: f64, n: usize) {
+    check::positive(e, "A_min", a_min);
+    if !(a_max > a_min) {
+        e.push(FieldError::new("A_max", format!("must exceed A_min ({a_min}), got {a_max}")));
+    }
+    check::at_least(e, "n", n, 2);
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct MaugisParams {
+    /// Maugis' transition parameter lambda = 2 sigma0 (R / (pi w K^2))^(1/3) (sweepable).
+    pub lambda: f64,
+    /// Smallest dimensionless contact radius A.
+    #[serde(default = "default_a_min")]
+    pub A_min: f64,
+    /// Largest dimensionless contact radius A.
+    #[serde(default = "default_a_max")]
+    pub A_max: f64,
+    /// Number of radii (log-spaced).
+    #[serde(default = "default_n")]
+    pub n: usize,
+}
+
+/// The Maugis–Dugdale load–radius curve for one lambda.
+pub struct MaugisDugdale;
+
+impl Kind for MaugisDugdale {
+    const NAME: &'static str = "theory.maugis_dugdale";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
+    const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    type Params = MaugisParams;
+
+    fn validate(p: &MaugisParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", p.lambda);
+        check_radii(&mut e, p.A_min, p.A_max, p.n);
+        e
+    }
+
+    fn run(p: &MaugisParams, _: &Inputs) -> Result<Output> {
+        let mut cols: [Vec<f64>; 4] = Default::default();
+        for a in radii(p.A_min, p.A_max, p.n) {
+            let Some(pt) = classical::maugis_dugdale(a, p.lambda) else {
+                bail!("no Maugis-Dugdale solution at A = {a}, lambda = {}", p.lambda)
+            };
+            for (c, v) in cols.iter_mut().zip([a, pt.load, pt.approach, pt.m]) {
+                c.push(v);
+            }
+        }
+        let [a, load, approach, m] = cols;
+        Ok(Table::new()
+            .with_f64("lambda", vec![p.lambda; a.len()])
+            .with_f64("A_bar", a)
+            .with_f64("P_bar", load)
+            .with_f64("approach_bar", approach)
+            .with_f64("m", m)
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PullOffParams {
+    /// Maugis' transition parameter (sweepable).
+    pub lambda: f64,
+}
+
+/// Pull-off load of the Maugis–Dugdale sphere under load control.
+pub struct MaugisPullOff;
+
+impl Kind for MaugisPullOff {
+    const NAME: &'static str = "theory.maugis_pulloff";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Maugis-Dugdale pull-off load (minimum of P_bar over A_bar); JKR -3/2, DMT -2";
+    const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    type Params = PullOffParams;
+
+    fn validate(p: &PullOffParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", p.lambda);
+        e
+    }
+
+    fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
+        let Some((load, a)) = classical::maugis_pull_off(p.lambda) else { bail!("no pull-off found for lambda = {}", p.lambda) };
+        Ok(Table::new()
+            .with_f64("lambda", vec![p.lambda])
+            .with_f64("P_bar_pulloff", vec![load])
+            .with_f64("A_bar_pulloff", vec![a])
+            .with_f64("P_bar_jkr", vec![classical::JKR_PULL_OFF])
+            .with_f64("P_bar_dmt", vec![classical::DMT_PULL_OFF])
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct LimitsParams {
+    #[serde(default = "default_a_min")]
+    pub A_min: f64,
+    #[serde(default = "default_a_max")]
+    pub A_max: f64,
+    #[serde(default = "default_n")]
+    pub n: usize,
+}
+
+/// Hertz, JKR and DMT load–radius curves in Maugis' units.
+pub struct SphereLimits;
+
+impl Kind for SphereLimits {
+    const NAME: &'static str = "theory.sphere_limits";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Hertz (P = A^3), JKR (A^3 - sqrt(6 A^3)) and DMT (A^3 - 2) curves in Maugis' units";
+    type Params = LimitsParams;
+
+    fn validate(p: &LimitsParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check_radii(&mut e, p.A_min, p.A_max, p.n);
+        e
+    }
+
+    fn run(p: &LimitsParams, _: &Inputs) -> Result<Output> {
+        let a = radii(p.A_min, p.A_max, p.n);
+        let mut t = Table::new();
+        let models: [(&str, fn(f64) -> f64); 3] =
+            [("hertz", classical::hertz_load), ("jkr", classical::jkr_load), ("dmt", classical::dmt_load)];
+        for (name, f) in models {
+            t.append(
+                &Table::new()
+                    .with("model", ColumnData::Str(vec![name.to_string(); a.len()]))
+                    .with_f64("A_bar", a.clone())
+                    .with_f64("P_bar", a.iter().map(|&x| f(x)).collect()),
+            )?;
+        }
+        Ok(t.into())
+    }
+}
+
+fn default_load() -> f64 {
+    1.0
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct PressureParams {
+    /// Load in Maugis' units, P = F / (pi w R); must exceed the JKR pull-off -3/2.
+    #[serde(default = "default_load")]
+    pub P_bar: f64,
+    /// Number of radial points per model.
+    #[serde(default = "default_n")]
+    pub n: usize,
+}
+
+/// Hertz and JKR pressure profiles at the same load (thesis Fig. 2.4).
+pub struct HertzJkrPressure;
+
+impl Kind for HertzJkrPressure {
+    const NAME: &'static str = "theory.hertz_jkr_pressure";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Hertz and JKR pressure p/p0_Hertz vs r/a_Hertz at the same load (Fig. 2.4)";
+    type Params = PressureParams;
+
+    fn validate(p: &PressureParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "P_bar", p.P_bar);
+        check::at_least(&mut e, "n", p.n, 10);
+        e
+    }
+
+    fn run(p: &PressureParams, _: &Inputs) -> Result<Output> {
+        let a_h = p.P_bar.cbrt();
+        let Some(a_j) = classical::jkr_radius(p.P_bar) else { bail!("load below the JKR pull-off") };
+        let rho_max = 1.3 * a_j / a_h;
+        let mut t = Table::new();
+        // Hertz on a uniform grid; JKR on r = a sin(theta), which clusters points at the
+        // singular edge; stop where sqrt(1 - r^2/a^2) = 0.02.
+        let hertz_rho: Vec<f64> = (0..p.n).map(|i| rho_max * i as f64 / (p.n - 1) as f64).collect();
+        let th_max = (1.0f64 - 0.02f64.powi(2)).sqrt().asin();
+        let mut jkr_rho: Vec<f64> =
+            (0..p.n).map(|i| (a_j / a_h) * (th_max * i as f64 / (p.n - 1) as f64).sin()).collect();
+        jkr_rho.extend([a_j / a_h, rho_max]);
+        let mut jkr_p: Vec<f64> = jkr_rho[..p.n].iter().map(|&r| classical::jkr_pressure(r, p.P_bar).unwrap()).collect();
+        jkr_p.extend([0.0, 0.0]);
+        for (name, rho, pr) in [
+            ("hertz", hertz_rho.clone(), hertz_rho.iter().map(|&r| classical::hertz_pressure(r)).collect::<Vec<_>>()),
+            ("jkr", jkr_rho, jkr_p),
+        ] {
+            let n = rho.len();
+            t.append(
+                &Table::new()
+                    .with("model", ColumnData::Str(vec![name.to_string(); n]))
+                    .with_f64("P_bar", vec![p.P_bar; n])
+                    .with_f64("r_over_aH", rho)
+                    .with_f64("p_over_p0H", pr),
+            )?;
+        }
+        Ok(t.into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct PerssonParams {
+    /// 1/k = E_inf / E0 (sweepable), > 1.
+    pub inv_k: f64,
+    /// V0 = v tau / a0 (sweepable), > 0.
+    pub V0: f64,
+    /// Relative tolerance of the quadrature.
+    #[serde(default = "default_rel_tol")]
+    pub rel_tol: f64,
+}
+
+fn check_inv_k(e: &mut Vec<FieldError>, inv_k: f64) {
+    if !(inv_k > 1.0 && inv_k.is_finite()) {
+        e.push(FieldError::new("inv_k", format!("1/k = E_inf/E0 must exceed 1 (the modulus ratio k lies in (0, 1)), got {inv_k}")));
+    }
+}
+
+fn check_tol(e: &mut Vec<FieldError>, tol: f64) {
+    check::in_open(e, "rel_tol", tol, 0.0, 0.01, "the tolerance");
+}
+
+/// Persson's adhesionless friction mu* at one (1/k, V0) (Appendix A).
+pub struct Persson;
+
+impl Kind for Persson {
+    const NAME: &'static str = "theory.persson";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Persson's adhesionless friction mu* = mu R/a0 vs V0 = v tau/a0 for a standard linear solid (Eqs. 7.1-7.2)";
+    const SWEEPABLE: &'static [&'static str] = &["inv_k", "V0"];
+    type Params = PerssonParams;
+
+    fn validate(p: &PerssonParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check_inv_k(&mut e, p.inv_k);
+        check::positive(&mut e, "V0", p.V0);
+        check_tol(&mut e, p.rel_tol);
+        e
+    }
+
+    fn run(p: &PerssonParams, _: &Inputs) -> Result<Output> {
+        let f = persson::mu_star(1.0 / p.inv_k, p.V0, p.rel_tol);
+        Ok(Table::new()
+            .with_f64("inv_k", vec![p.inv_k])
+            .with_f64("k", vec![1.0 / p.inv_k])
+            .with_f64("V0", vec![p.V0])
+            .with_f64("mu_star", vec![f.mu_star])
+            .with_f64("error_estimate", vec![f.error_estimate])
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PerssonMaxParams {
+    /// 1/k = E_inf / E0 (sweepable), > 1.
+    pub inv_k: f64,
+    #[serde(default = "default_rel_tol")]
+    pub rel_tol: f64,
+}
+
+/// The maximum over V0 of Persson's mu* for one 1/k (Fig. 7.4).
+pub struct PerssonMax;
+
+impl Kind for PerssonMax {
+    const NAME: &'static str = "theory.persson_max";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Maximum over V0 of Persson's adhesionless mu*, and where it occurs";
+    const SWEEPABLE: &'static [&'static str] = &["inv_k"];
+    type Params = PerssonMaxParams;
+
+    fn validate(p: &PerssonMaxParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check_inv_k(&mut e, p.inv_k);
+        check_tol(&mut e, p.rel_tol);
+        e
+    }
+
+    fn run(p: &PerssonMaxParams, _: &Inputs) -> Result<Output> {
+        let (v, f) = persson::max_mu_star(1.0 / p.inv_k, p.rel_tol);
+        Ok(Table::new()
+            .with_f64("inv_k", vec![p.inv_k])
+            .with_f64("k", vec![1.0 / p.inv_k])
+            .with_f64("mu_star_max", vec![f.mu_star])
+            .with_f64("V0_at_max", vec![v])
+            .with_f64("error_estimate", vec![f.error_estimate])
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct PbParams {
+    /// Modulus ratio k = E0 / E_inf in (0, 1) (sweepable).
+    pub k: f64,
+    /// V_PB = v / v0, v0 = c0 / (2 pi tau) (sweepable).
+    pub V_PB: f64,
+}
+
+/// Persson–Brener trailing-edge energy release and friction (Eqs. 5.10–5.13).
+pub struct PerssonBrener;
+
+impl Kind for PerssonBrener {
+    const NAME: &'static str = "theory.persson_brener";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
+    const SWEEPABLE: &'static [&'static str] = &["k", "V_PB"];
+    type Params = PbParams;
+
+    fn validate(p: &PbParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
+        check::positive(&mut e, "V_PB", p.V_PB);
+        e
+    }
+
+    fn run(p: &PbParams, _: &Inputs) -> Result<Output> {
+        let g = persson_brener::g_trailing(p.V_PB, p.k);
+        Ok(Table::new()
+            .with_f64("k", vec![p.k])
+            .with_f64("V_PB", vec![p.V_PB])
+            .with_f64("G_trail_over_dgamma", vec![g])
+            .with_f64("F_T_PB", vec![persson_brener::friction(p.V_PB, p.k)])
+            .into())
+    }
+}
+
+pub fn register(r: &mut Registry) {
+    r.add::<MaugisDugdale>()
+        .add::<MaugisPullOff>()
+        .add::<SphereLimits>()
+        .add::<HertzJkrPressure>()
+        .add::<Persson>()
+        .add::<PerssonMax>()
+        .add::<PerssonBrener>();
+}

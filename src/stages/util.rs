@@ -1,0 +1,89 @@
+//! Utility kinds for exercising the orchestrator (tests, demos): they compute nothing
+//! physical. `util.sleep` waits and returns its parameters; `util.fail` always fails.
+
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
+use crate::pipeline::table::{ColumnData, Table};
+use anyhow::Result;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SleepParams {
+    /// Value echoed into the output table (sweepable).
+    pub x: f64,
+    /// Milliseconds to wait before returning.
+    #[serde(default)]
+    pub ms: u64,
+    /// Output `x` rounded to this many decimals (lets tests produce identical outputs
+    /// from different parameters).
+    #[serde(default)]
+    pub round: Option<i32>,
+}
+
+/// Sleeps, then returns x (and the row count of its inputs).
+pub struct Sleep;
+
+impl Kind for Sleep {
+    const NAME: &'static str = "util.sleep";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Waits `ms` milliseconds and returns `x` (for testing the orchestrator)";
+    const SWEEPABLE: &'static [&'static str] = &["x"];
+    type Params = SleepParams;
+
+    fn validate(p: &SleepParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        if p.ms > 600_000 {
+            e.push(FieldError::new("ms", "must be at most 600000"));
+        }
+        e
+    }
+
+    fn run(p: &SleepParams, inputs: &Inputs) -> Result<Output> {
+        std::thread::sleep(std::time::Duration::from_millis(p.ms));
+        let x = match p.round {
+            Some(d) => (p.x * 10f64.powi(d)).round() / 10f64.powi(d),
+            None => p.x,
+        };
+        let upstream_rows: i64 = inputs.tables.values().map(|t| t.n_rows() as i64).sum();
+        Ok(Table::new().with_f64("x", vec![x]).with("upstream_rows", ColumnData::I64(vec![upstream_rows])).into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FailParams {
+    /// The error message.
+    pub message: String,
+    /// Also panic instead of returning an error.
+    #[serde(default)]
+    pub panic: bool,
+    /// Positive: output this value instead of failing; the failure happens when `x <= 0`.
+    #[serde(default)]
+    pub x: f64,
+}
+
+/// Fails with a message when x <= 0 (for testing keep-going).
+pub struct Fail;
+
+impl Kind for Fail {
+    const NAME: &'static str = "util.fail";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Fails with `message` when x <= 0 (for testing the orchestrator)";
+    const SWEEPABLE: &'static [&'static str] = &["x"];
+    type Params = FailParams;
+
+    fn run(p: &FailParams, _inputs: &Inputs) -> Result<Output> {
+        if p.x > 0.0 {
+            return Ok(Table::new().with_f64("x", vec![p.x]).into());
+        }
+        if p.panic {
+            panic!("{}", p.message);
+        }
+        anyhow::bail!("{}", p.message)
+    }
+}
+
+pub fn register(r: &mut crate::pipeline::kind::Registry) {
+    r.add::<Sleep>().add::<Fail>();
+}

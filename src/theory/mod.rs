@@ -1,0 +1,5 @@
+//! Closed-form and quadrature theories that serve as limits and references.
+
+pub mod classical;
+pub mod persson;
+pub mod persson_brener;
