@@ -112,7 +112,12 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// Where a node starts; for a block mapping, where its first key starts (marked_yaml
+    /// marks block mappings at their first colon).
     fn loc(&self, node: &Node) -> Location {
+        if let Node::Mapping(m) = node {
+            return mapping_location(self.file, m);
+        }
         span_location(self.file, node.span())
     }
     fn err(&mut self, location: Location, message: impl Into<String>) {
@@ -123,6 +128,21 @@ impl Ctx<'_> {
 fn span_location(file: &str, span: &marked_yaml::Span) -> Location {
     let (line, column) = span.start().map_or((0, 0), |m| (m.line(), m.column()));
     Location { file: file.to_string(), line, column }
+}
+
+fn mapping_location(file: &str, m: &MarkedMappingNode) -> Location {
+    match m.keys().next() {
+        Some(k) if !is_flow_mapping(m) => span_location(file, k.span()),
+        _ => span_location(file, m.span()),
+    }
+}
+
+/// A flow mapping (`{a: 1}`) starts at its brace, which is what its span marks.
+fn is_flow_mapping(m: &MarkedMappingNode) -> bool {
+    match (m.span().start(), m.keys().next().and_then(|k| k.span().start())) {
+        (Some(ms), Some(ks)) => ms.line() < ks.line() || (ms.line() == ks.line() && ms.column() < ks.column()),
+        _ => true,
+    }
 }
 
 fn marker_location(file: &str, m: &marked_yaml::Marker) -> Location {
@@ -302,7 +322,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         }
     }
     Some(ParsedStage {
-        stage: Stage { name, kind: kind_name, needs, points: checked, location: cx.loc(node) },
+        stage: Stage { name, kind: kind_name, needs, points: checked, location: mapping_location(cx.file, map) },
         need_locations,
     })
 }
@@ -319,7 +339,8 @@ fn is_valid_name(s: &str) -> bool {
     !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
 }
 
-/// The known name closest to `name`, if it is close (edit distance at most 3).
+/// The known name closest to `name`, if it is close (edit distance at most 3, and less
+/// than the length of `name`).
 fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
     fn distance(a: &str, b: &str) -> usize {
         let b: Vec<char> = b.chars().collect();
@@ -333,7 +354,8 @@ fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
         }
         prev[b.len()]
     }
-    known.iter().map(|k| (distance(name, k), *k)).filter(|(d, _)| *d <= 3).min().map(|(_, k)| k)
+    let limit = 3.min(name.chars().count().saturating_sub(1));
+    known.iter().map(|k| (distance(name, k), *k)).filter(|(d, _)| *d <= limit).min().map(|(_, k)| k)
 }
 
 /// Converts a YAML node to JSON: unquoted scalars become null, booleans or numbers where
@@ -507,7 +529,7 @@ fn json_number(x: f64) -> Value {
 /// The location of the deepest node on `err.path` (a swept parameter's node for this point).
 fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>, err: &FieldError) -> Location {
     let segments = split_path(&err.path);
-    let params_node_loc = span_location(cx.file, params.span());
+    let params_node_loc = mapping_location(cx.file, params);
     let Some((first, rest)) = segments.split_first() else {
         return params_node_loc;
     };
@@ -524,7 +546,18 @@ fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>,
             }
         },
     };
-    for seg in rest {
+    let unknown_field = err.message.starts_with("unknown field");
+    if rest.is_empty() && unknown_field {
+        if let Some(k) = params.keys().find(|k| k.as_str() == first) {
+            return span_location(cx.file, k.span());
+        }
+    }
+    for (i, seg) in rest.iter().enumerate() {
+        if let (Node::Mapping(m), true) = (node, unknown_field && i + 1 == rest.len()) {
+            if let Some(k) = m.keys().find(|k| k.as_str() == seg) {
+                return span_location(cx.file, k.span());
+            }
+        }
         let next = match (node, seg.parse::<usize>()) {
             (Node::Sequence(s), Ok(i)) => s.get(i),
             (Node::Mapping(m), _) => m.get_node(seg),

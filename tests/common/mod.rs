@@ -1,0 +1,148 @@
+//! Helpers for the integration tests: a scratch directory per test, pipeline files, and
+//! runs of the `repro` binary whose JSON run report the tests read.
+#![allow(dead_code)]
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+
+pub struct Scratch {
+    pub dir: PathBuf,
+}
+
+impl Scratch {
+    pub fn new(name: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!("repro-test-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch { dir }
+    }
+
+    pub fn path(&self, rel: &str) -> PathBuf {
+        self.dir.join(rel)
+    }
+
+    pub fn write(&self, rel: &str, text: &str) -> PathBuf {
+        let p = self.path(rel);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    pub fn command(&self, args: &[&str]) -> Command {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_repro"));
+        c.current_dir(&self.dir).args(args);
+        c
+    }
+
+    /// Runs `repro` with `args` and returns its output.
+    pub fn repro(&self, args: &[&str]) -> Output {
+        self.command(args).output().unwrap()
+    }
+
+    /// `repro run PIPELINE --report report.json -q ARGS`; returns (exit code, stderr, report).
+    pub fn run(&self, pipeline: &str, extra: &[&str]) -> (i32, String, Report) {
+        let _ = std::fs::remove_file(self.path("report.json"));
+        let mut args = vec!["run", pipeline, "--report", "report.json", "-q"];
+        args.extend_from_slice(extra);
+        let out = self.repro(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        let report = std::fs::read(self.path("report.json"))
+            .map(|b| Report(serde_json::from_slice(&b).unwrap()))
+            .unwrap_or(Report(Value::Null));
+        (out.status.code().unwrap_or(-1), stderr, report)
+    }
+
+    pub fn spawn_run(&self, pipeline: &str, extra: &[&str]) -> Child {
+        let mut args = vec!["run", pipeline, "-q"];
+        args.extend_from_slice(extra);
+        self.command(&args).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().unwrap()
+    }
+
+    pub fn read(&self, rel: &str) -> Vec<u8> {
+        std::fs::read(self.path(rel)).unwrap_or_else(|e| panic!("reading {rel}: {e}"))
+    }
+
+    pub fn exists(&self, rel: &str) -> bool {
+        self.path(rel).exists()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.dir);
+        }
+    }
+}
+
+/// The JSON run report written by `--report`.
+pub struct Report(pub Value);
+
+impl Report {
+    pub fn tasks(&self) -> Vec<&Value> {
+        self.0["tasks"].as_array().map(|a| a.iter().collect()).unwrap_or_default()
+    }
+
+    /// How many tasks of `stage` (or of all stages, if None) have `status`.
+    pub fn count(&self, stage: Option<&str>, status: &str) -> usize {
+        self.tasks()
+            .iter()
+            .filter(|t| stage.is_none_or(|s| t["stage"] == s) && t["status"] == status)
+            .count()
+    }
+
+    pub fn stages(&self) -> Vec<String> {
+        let mut v: Vec<String> = self.tasks().iter().map(|t| t["stage"].as_str().unwrap().to_string()).collect();
+        v.dedup();
+        v
+    }
+
+    pub fn task(&self, stage: &str, point: &str) -> &Value {
+        self.tasks()
+            .into_iter()
+            .find(|t| t["stage"] == stage && t["point"] == point)
+            .unwrap_or_else(|| panic!("no task {stage} {point}"))
+    }
+}
+
+/// Every file under `dir`, with its bytes, sorted by path (for comparing outputs).
+pub fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    if let Ok(rd) = std::fs::read_dir(dir) {
+        for e in rd.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                out.extend(snapshot(&p));
+            } else {
+                out.push((p.file_name().unwrap().to_string_lossy().to_string(), std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// A small pipeline of `util.sleep` tasks: a sweep, a stage that reads it, and a figure.
+pub fn sleep_pipeline(xs: &str, ms: u64, title: &str) -> String {
+    format!(
+        r#"stages:
+  - name: sweep
+    kind: util.sleep
+    params: {{x: {xs}, ms: {ms}}}
+  - name: after
+    kind: util.sleep
+    needs: [sweep]
+    params: {{x: 7}}
+  - name: fig
+    kind: figure
+    needs: [sweep]
+    params:
+      title: "{title}"
+      x_label: "x"
+      y_label: "upstream rows"
+      layers:
+        - data: {{from: sweep, x: x, y: upstream_rows, label: "sweep"}}
+"#
+    )
+}
