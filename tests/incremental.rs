@@ -1,0 +1,170 @@
+//! Incremental runs: what runs, read from the run report (`--report`), not only from the
+//! outputs.
+
+mod common;
+use common::{sleep_pipeline, snapshot, Scratch};
+
+#[test]
+fn no_op_rerun_computes_nothing_and_rewrites_nothing() {
+    let s = Scratch::new("noop");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.count(None, "computed"), 5);
+    assert!(s.exists("figures/fig.svg") && s.exists("figures/fig.parquet") && s.exists("tables/sweep.parquet"));
+    let before = snapshot(&s.path("figures"));
+    let (code, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0);
+    assert_eq!(r.count(None, "computed"), 0);
+    assert_eq!(r.count(None, "cached"), 5);
+    assert_eq!(r.0["published"].as_array().unwrap().len(), 0, "nothing is rewritten");
+    assert_eq!(before, snapshot(&s.path("figures")));
+}
+
+#[test]
+fn adding_a_sweep_value_computes_only_that_point() {
+    let s = Scratch::new("sweep-add");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    s.run("p.yaml", &[]);
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 2.5, 3]", 0, "t"));
+    let (code, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0);
+    assert_eq!(r.count(Some("sweep"), "computed"), 1);
+    assert_eq!(r.count(Some("sweep"), "cached"), 3);
+    let t = r.task("sweep", "x=2.5");
+    assert_eq!(t["status"], "computed");
+    assert_eq!(t["reason"], "new sweep point x=2.5");
+    // Its readers see a new table, so they rerun; the stage table has all four points.
+    assert_eq!(r.count(Some("after"), "computed"), 1);
+    assert_eq!(r.count(Some("fig"), "computed"), 1);
+    let df = repro::pipeline::table::read_parquet(&s.path("tables/sweep.parquet")).unwrap();
+    assert_eq!(df.height(), 4);
+    // A logspace sweep gives the same points as the equivalent list: nothing recomputed.
+    s.write("p.yaml", &sleep_pipeline("{logspace: [0, 1, 3]}", 0, "t"));
+    s.write("q.yaml", &sleep_pipeline("[1, 3.16227766017, 10]", 0, "t"));
+    s.run("p.yaml", &[]);
+    let (_, _, r) = s.run("q.yaml", &[]);
+    assert_eq!(r.count(Some("sweep"), "computed"), 0, "{:?}", r.0);
+}
+
+#[test]
+fn early_cutoff_when_a_recomputed_output_is_identical() {
+    let s = Scratch::new("cutoff");
+    let yaml = |x: &str| {
+        format!(
+            "stages:\n  - name: up\n    kind: util.sleep\n    params: {{x: {x}, round: 1}}\n  - name: down\n    kind: util.sleep\n    needs: [up]\n    params: {{x: 5}}\n"
+        )
+    };
+    s.write("p.yaml", &yaml("1.01"));
+    s.run("p.yaml", &[]);
+    // 1.02 rounds to the same 1.0: `up` recomputes, `down` sees identical input.
+    s.write("p.yaml", &yaml("1.02"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(Some("up"), "computed"), 1);
+    assert_eq!(r.count(Some("down"), "cached"), 1);
+    // 1.2 rounds to 1.2: a different output, so `down` reruns.
+    s.write("p.yaml", &yaml("1.2"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(Some("down"), "computed"), 1);
+    assert_eq!(r.task("down", "")["reason"], "input changed: up");
+}
+
+#[test]
+fn editing_only_a_figure_style_reruns_only_that_figure() {
+    let s = Scratch::new("style");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "first title"));
+    s.run("p.yaml", &[]);
+    let svg1 = s.read("figures/fig.svg");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "second title"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(None, "computed"), 1);
+    assert_eq!(r.task("fig", "")["status"], "computed");
+    assert_eq!(r.task("fig", "")["reason"], "parameters changed: title");
+    let svg2 = String::from_utf8(s.read("figures/fig.svg")).unwrap();
+    assert!(svg2.contains("second title") && s.read("figures/fig.svg") != svg1);
+}
+
+#[test]
+fn targets_run_only_what_they_need() {
+    let s = Scratch::new("targets");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    let (code, _, r) = s.run("p.yaml", &["--target", "after"]);
+    assert_eq!(code, 0);
+    assert_eq!(r.stages(), vec!["sweep", "after"]);
+    assert!(!s.exists("figures/fig.svg"));
+    let (code, err, _) = s.run("p.yaml", &["--target", "nope"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--target nope: no stage of that name"), "{err}");
+}
+
+#[test]
+fn force_recomputes_a_stage_and_cutoff_spares_its_readers() {
+    let s = Scratch::new("force");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    s.run("p.yaml", &[]);
+    let (_, _, r) = s.run("p.yaml", &["--force", "sweep"]);
+    assert_eq!(r.count(Some("sweep"), "computed"), 2);
+    assert_eq!(r.task("sweep", "x=1")["reason"], "forced (--force)");
+    assert_eq!(r.count(Some("after"), "cached"), 1, "identical outputs: readers stay cached");
+}
+
+#[test]
+fn keep_going_records_failures_and_skips_dependents() {
+    let s = Scratch::new("keep-going");
+    s.write(
+        "p.yaml",
+        r#"stages:
+  - name: bad
+    kind: util.fail
+    params: {message: "deliberate failure", x: [1, 0]}
+  - name: worse
+    kind: util.fail
+    params: {message: "deliberate panic", panic: true}
+  - name: good
+    kind: util.sleep
+    params: {x: [1, 2, 3]}
+  - name: after_bad
+    kind: util.sleep
+    needs: [bad]
+    params: {x: 1}
+  - name: after_good
+    kind: util.sleep
+    needs: [good]
+    params: {x: 1}
+"#,
+    );
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 1, "failed tasks exit with 1: {err}");
+    assert_eq!(r.task("bad", "x=1")["status"], "computed");
+    let failed = r.task("bad", "x=0");
+    assert_eq!(failed["status"], "failed");
+    assert_eq!(failed["error"], "deliberate failure");
+    assert_eq!(r.task("worse", "")["status"], "failed");
+    assert!(r.task("worse", "")["error"].as_str().unwrap().contains("panicked: deliberate panic"));
+    assert_eq!(r.count(Some("good"), "computed"), 3);
+    assert_eq!(r.count(Some("after_good"), "computed"), 1);
+    let skipped = r.task("after_bad", "");
+    assert_eq!(skipped["status"], "skipped");
+    assert_eq!(skipped["reason"], "needs bad which did not complete");
+    assert!(err.contains("FAILED x=0: deliberate failure"), "{err}");
+    // The successful point of the failed stage is cached; the failure is retried.
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("bad", "x=1")["status"], "cached");
+    assert_eq!(r.task("bad", "x=0")["status"], "failed");
+}
+
+#[test]
+fn dry_run_and_status_explain_without_writing() {
+    let s = Scratch::new("dry");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    let (code, err, r) = s.run("p.yaml", &["--dry-run"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.count(Some("sweep"), "would_run"), 2);
+    assert_eq!(r.count(Some("after"), "unknown"), 1);
+    assert!(!s.exists("cache/objects") && !s.exists("figures"));
+    s.run("p.yaml", &[]);
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 4]", 0, "t"));
+    let out = s.repro(&["status", "p.yaml"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("sweep") && text.contains("1 would run") && text.contains("new sweep point x=4"), "{text}");
+}
