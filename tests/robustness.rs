@@ -1,0 +1,124 @@
+//! Faults: corrupted cache entries, a killed run, two runs on one cache, garbage
+//! collection.
+
+mod common;
+use common::{sleep_pipeline, snapshot, Scratch};
+use std::time::{Duration, Instant};
+
+fn entry_files(s: &Scratch) -> Vec<std::path::PathBuf> {
+    let mut v = Vec::new();
+    for d in std::fs::read_dir(s.path("cache/objects")).unwrap().flatten() {
+        for f in std::fs::read_dir(d.path()).unwrap().flatten() {
+            v.push(f.path());
+        }
+    }
+    v.sort();
+    v
+}
+
+#[test]
+fn corrupted_or_truncated_entries_are_reported_and_recomputed() {
+    let s = Scratch::new("corrupt");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    s.run("p.yaml", &[]);
+    let figures = snapshot(&s.path("figures"));
+    let files = entry_files(&s);
+    assert_eq!(files.len(), 5);
+    // Truncate one entry, flip a byte in another's body, empty a third.
+    let bytes = std::fs::read(&files[0]).unwrap();
+    std::fs::write(&files[0], &bytes[..bytes.len() / 2]).unwrap();
+    let mut bytes = std::fs::read(&files[1]).unwrap();
+    let n = bytes.len();
+    bytes[n - 10] ^= 0x01;
+    std::fs::write(&files[1], &bytes).unwrap();
+    std::fs::write(&files[2], b"").unwrap();
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    let corrupted: Vec<_> = r
+        .tasks()
+        .into_iter()
+        .filter(|t| t["reason"].as_str().is_some_and(|x| x.starts_with("corrupted cache entry")))
+        .collect();
+    assert_eq!(corrupted.len(), 3, "{:?}", r.0);
+    assert_eq!(err.matches("is corrupted").count(), 3, "{err}");
+    assert_eq!(snapshot(&s.path("figures")), figures, "same outputs after recomputation");
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(None, "computed"), 0, "the recomputed entries are sound");
+}
+
+#[test]
+fn a_killed_run_resumes_and_ends_with_the_same_outputs() {
+    let s = Scratch::new("killed");
+    let yaml = sleep_pipeline("{linspace: [1, 24, 24]}", 150, "t");
+    s.write("p.yaml", &yaml);
+    // Reference: an uninterrupted run in another directory.
+    let reference = Scratch::new("killed-ref");
+    reference.write("p.yaml", &yaml);
+    assert_eq!(reference.run("p.yaml", &["--jobs", "2"]).0, 0);
+    // Kill once some tasks are done (24 tasks x 150 ms on 2 workers take about 1.8 s).
+    let mut child = s.spawn_run("p.yaml", &["--jobs", "2"]);
+    let t0 = Instant::now();
+    loop {
+        std::thread::sleep(Duration::from_millis(50));
+        let done = s.path("cache/objects").exists() && entry_files(&s).len() >= 4;
+        if done || t0.elapsed() > Duration::from_secs(20) {
+            break;
+        }
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let partial = entry_files(&s).len();
+    assert!((1..24).contains(&partial), "killed mid-run: {partial} entries");
+    let (code, err, r) = s.run("p.yaml", &["--jobs", "2"]);
+    assert_eq!(code, 0, "{err}");
+    let cached = r.count(Some("sweep"), "cached");
+    assert!(cached >= partial - 1 && cached < 24, "resumed: {cached} cached of 24");
+    assert_eq!(r.count(Some("sweep"), "cached") + r.count(Some("sweep"), "computed"), 24);
+    assert_eq!(snapshot(&s.path("figures")), snapshot(&reference.path("figures")));
+    assert_eq!(snapshot(&s.path("tables")), snapshot(&reference.path("tables")));
+    let leftovers = std::fs::read_dir(s.path("cache/tmp")).unwrap().count();
+    assert_eq!(leftovers, 0, "no temporary files remain");
+}
+
+#[test]
+fn a_second_repro_on_the_same_cache_refuses_or_waits() {
+    let s = Scratch::new("concurrent");
+    s.write("slow.yaml", &sleep_pipeline("[1, 2, 3, 4]", 400, "t"));
+    s.write("fast.yaml", &sleep_pipeline("[5]", 0, "u"));
+    let mut first = s.spawn_run("slow.yaml", &["--jobs", "1"]);
+    // Wait until the first run holds the lock (it writes lock.info when it has it).
+    let t0 = Instant::now();
+    while !s.path("cache/lock.info").exists() && t0.elapsed() < Duration::from_secs(10) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let (code, err, _) = s.run("fast.yaml", &["--no-wait"]);
+    assert_eq!(code, 3, "{err}");
+    assert!(err.contains("is in use by another repro (pid"), "{err}");
+    // Without --no-wait the second run waits for the first, then runs.
+    let t1 = Instant::now();
+    let (code, err, r) = s.run("fast.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("waiting for it to finish"), "{err}");
+    assert!(t1.elapsed() > Duration::from_millis(300), "it waited");
+    assert_eq!(r.count(Some("sweep"), "computed"), 1);
+    assert!(first.wait().unwrap().success());
+}
+
+#[test]
+fn gc_removes_only_entries_no_pipeline_refers_to() {
+    let s = Scratch::new("gc");
+    s.write("pipelines/a.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    s.run("pipelines/a.yaml", &[]);
+    s.write("pipelines/a.yaml", &sleep_pipeline("[1, 3]", 0, "t"));
+    s.run("pipelines/a.yaml", &[]);
+    // 4 entries from the first run, 3 new ones from the second (x=3, after, fig).
+    // Live: x=1, x=3 and the new after and fig. Dead: x=2 and the old after and fig.
+    let before = entry_files(&s).len();
+    assert_eq!(before, 7);
+    let out = s.repro(&["gc"]);
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains("kept 4 entries") && text.contains("removed 3"), "{text}");
+    let (_, _, r) = s.run("pipelines/a.yaml", &[]);
+    assert_eq!(r.count(None, "computed"), 0, "gc kept everything the pipeline needs");
+}
