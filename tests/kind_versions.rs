@@ -1,0 +1,78 @@
+//! Guards the rule "a change to a stage's code that can change its results bumps its
+//! VERSION" (README, "Code versions"). Every kind is run on reference parameters; the
+//! hash of its output is recorded per `kind@vN` in tests/kind_fingerprints.json. If the
+//! output changes while the version stays, this test fails: bump the kind's VERSION (which
+//! invalidates exactly that kind's cached results and what depends on them), then record
+//! the new fingerprint with `REPRO_BLESS=1 cargo test --test kind_versions`.
+
+use repro::pipeline::cache::output_hash;
+use repro::pipeline::kind::Inputs;
+use repro::pipeline::table::Table;
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+
+fn reference_params() -> BTreeMap<&'static str, Value> {
+    BTreeMap::from([
+        ("theory.maugis_dugdale", json!({"lambda": 0.7, "A_min": 0.1, "A_max": 2.0, "n": 7})),
+        ("theory.maugis_pulloff", json!({"lambda": 0.7})),
+        ("theory.sphere_limits", json!({"A_min": 0.1, "A_max": 2.0, "n": 5})),
+        ("theory.hertz_jkr_pressure", json!({"P_bar": 1.0, "n": 12})),
+        ("theory.persson", json!({"inv_k": 10, "V0": 1.3})),
+        ("theory.persson_max", json!({"inv_k": 10})),
+        ("theory.persson_brener", json!({"k": 0.01, "V_PB": 30})),
+        ("util.sleep", json!({"x": 1.25})),
+        ("util.fail", json!({"message": "m", "x": 2})),
+        (
+            "figure",
+            json!({
+                "title": "t", "x_label": "x", "y_label": "y", "log_x": true,
+                "layers": [
+                    {"data": {"from": "input", "x": "a", "y": "b", "group_by": "g", "label": "g = {g}"}},
+                    {"data": {"from": "input", "x": "a", "y": "b", "label": "points", "style": "points"}},
+                    {"guide": {"slope": 1, "through": [1, 1], "x_from": 0.1, "x_to": 10, "label": "g"}}
+                ]
+            }),
+        ),
+    ])
+}
+
+#[test]
+fn outputs_change_only_with_a_version_bump() {
+    let registry = repro::stages::registry();
+    let params = reference_params();
+    // Twelve curves (one per palette colour, and one more) of three points each.
+    let n = 12;
+    let input = Table::new()
+        .with_f64("a", (0..3 * n).map(|i| [0.1, 1.0, 10.0][i % 3]).collect())
+        .with_f64("b", (0..3 * n).map(|i| 1.0 + (i / 3) as f64 + [0.0, 0.5, 0.2][i % 3]).collect())
+        .with_f64("g", (0..3 * n).map(|i| (i / 3) as f64).collect());
+    let inputs = Inputs { tables: BTreeMap::from([("input".to_string(), &input)]) };
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kind_fingerprints.json");
+    let recorded: BTreeMap<String, String> =
+        std::fs::read(&path).ok().and_then(|b| serde_json::from_slice(&b).ok()).unwrap_or_default();
+    let mut current = BTreeMap::new();
+    let mut problems = Vec::new();
+    for kind in registry.iter() {
+        let Some(p) = params.get(kind.name()) else {
+            problems.push(format!("{}: add reference parameters to tests/kind_versions.rs", kind.name()));
+            continue;
+        };
+        let (canonical, _) = kind.check(p).unwrap_or_else(|e| panic!("{}: {e:?}", kind.name()));
+        let out = kind.run(&canonical, &inputs).unwrap_or_else(|e| panic!("{}: {e:#}", kind.name()));
+        let id = format!("{}@v{}", kind.name(), kind.version());
+        let hash = output_hash(&out);
+        match recorded.get(&id) {
+            Some(h) if *h != hash => problems.push(format!(
+                "{id}: its output changed but its VERSION did not; bump VERSION in the kind, then record with REPRO_BLESS=1"
+            )),
+            None => problems.push(format!("{id}: no recorded fingerprint; record with REPRO_BLESS=1")),
+            _ => {}
+        }
+        current.insert(id, hash);
+    }
+    if std::env::var("REPRO_BLESS").is_ok() {
+        std::fs::write(&path, serde_json::to_string_pretty(&current).unwrap() + "\n").unwrap();
+        return;
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
