@@ -1,0 +1,74 @@
+//! The default pipeline end to end: the five figures with their tables, a rerun that
+//! computes nothing, and the theory values read back from the published Parquet tables.
+
+mod common;
+use common::Scratch;
+use polars::prelude::*;
+
+fn column(df: &DataFrame, name: &str) -> Vec<f64> {
+    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
+}
+
+fn strings(df: &DataFrame, name: &str) -> Vec<String> {
+    df.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap_or_default().to_string()).collect()
+}
+
+fn row_where(df: &DataFrame, key: &str, value: f64, col: &str) -> f64 {
+    let keys = column(df, key);
+    let i = keys.iter().position(|k| (k - value).abs() < 1e-9 * value.abs()).unwrap();
+    column(df, col)[i]
+}
+
+#[test]
+fn the_thesis_pipeline_makes_five_figures_and_the_theory_values_hold() {
+    let s = Scratch::new("thesis");
+    let yaml = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/thesis.yaml")).unwrap();
+    s.write("pipelines/thesis.yaml", &yaml);
+    let (code, err, r) = s.run("pipelines/thesis.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.count(None, "failed"), 0);
+    for fig in ["fig2_4", "fig2_5", "fig7_3", "fig7_4", "fig5_4"] {
+        let svg = String::from_utf8(s.read(&format!("figures/{fig}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && (svg.contains("<polyline") || svg.contains("<circle")), "{fig}");
+        let df = repro::pipeline::table::read_parquet(&s.path(&format!("figures/{fig}.parquet"))).unwrap();
+        for c in ["series", "x", "y", "x_name", "y_name", "task_key", "code_version"] {
+            assert!(df.column(c).is_ok(), "{fig} lacks column {c}");
+        }
+        assert!(df.height() > 20, "{fig}: {} rows", df.height());
+    }
+    // A second run computes nothing.
+    let (_, _, again) = s.run("pipelines/thesis.yaml", &[]);
+    assert_eq!(again.count(None, "computed"), 0);
+    assert_eq!(again.count(None, "cached"), r.tasks().len());
+
+    let table = |name: &str| repro::pipeline::table::read_parquet(&s.path(&format!("tables/{name}.parquet"))).unwrap();
+    // Appendix A: max mu* about 0.48 at k = 0.1 (thesis), about 0.58 by 1/k = 100 (ERRATA 16).
+    let pm = table("persson_max");
+    let m10 = row_where(&pm, "inv_k", 10.0, "mu_star_max");
+    let m100 = row_where(&pm, "inv_k", 100.0, "mu_star_max");
+    let m1000 = row_where(&pm, "inv_k", 1000.0, "mu_star_max");
+    assert!((m10 - 0.48).abs() < 0.01, "{m10}");
+    assert!((m100 - 0.58).abs() < 0.02 && (m1000 - m100).abs() < 0.02, "{m100} {m1000}");
+    assert!(row_where(&pm, "inv_k", 1.1, "mu_star_max") < 0.05);
+    // Chapter 2: pull-off from DMT (-2) at small lambda to JKR (-3/2) at large lambda.
+    let po = table("maugis_pulloff");
+    let lambdas = column(&po, "lambda");
+    let loads = column(&po, "P_bar_pulloff");
+    assert!((loads[0] + 2.0).abs() < 0.03, "lambda {}: {}", lambdas[0], loads[0]);
+    let last = loads.len() - 1;
+    assert!((loads[last] + 1.5).abs() < 0.03, "lambda {}: {}", lambdas[last], loads[last]);
+    assert!(loads.windows(2).all(|w| w[1] > w[0]), "pull-off rises monotonically with lambda: {loads:?}");
+    // Persson-Brener: slope 1 with prefactor (1 - k) at low speed, saturation at 1/k - k.
+    let pb = table("persson_brener");
+    let (k, v, f) = (column(&pb, "k"), column(&pb, "V_PB"), column(&pb, "F_T_PB"));
+    for i in 0..k.len() {
+        if v[i] == 1e-4 {
+            assert!((f[i] / ((1.0 - k[i]) * v[i]) - 1.0).abs() < 1e-3, "k={} {}", k[i], f[i]);
+        }
+        if v[i] == 1e10 && k[i] >= 0.001 {
+            assert!((f[i] / (1.0 / k[i] - k[i]) - 1.0).abs() < 1e-2, "k={} {}", k[i], f[i]);
+        }
+    }
+    // Provenance: the code version on every row.
+    assert!(strings(&pb, "code_version").iter().all(|c| c == "theory.persson_brener@v1"));
+}
