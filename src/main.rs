@@ -124,7 +124,20 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let registry = repro::stages::registry();
     let result: anyhow::Result<ExitCode> = (|| match cli.command {
-        Command::Run { pipeline, targets, jobs, dry_run, explain, force, cache, report, no_wait, figures, tables, quiet } => {
+        Command::Run {
+            pipeline,
+            targets,
+            jobs,
+            dry_run,
+            explain,
+            force,
+            cache,
+            report,
+            no_wait,
+            figures,
+            tables,
+            quiet,
+        } => {
             let p = load(&pipeline, &registry)?;
             let opts = RunOptions {
                 cache_dir: cache.cache,

@@ -19,10 +19,8 @@ fn rejected(name: &str, yaml: &str) -> String {
 
 #[test]
 fn unknown_stage_kind_is_located_and_suggests_a_name() {
-    let err = rejected(
-        "unknown-kind",
-        "stages:\n  - name: a\n    kind: theory.persone\n    params: {inv_k: 10, V0: 1}\n",
-    );
+    let err =
+        rejected("unknown-kind", "stages:\n  - name: a\n    kind: theory.persone\n    params: {inv_k: 10, V0: 1}\n");
     assert!(err.contains("p.yaml:3:11: error:"), "{err}");
     assert!(err.contains("unknown stage kind `theory.persone`"), "{err}");
     assert!(err.contains("did you mean `theory.persson`?"), "{err}");
@@ -40,7 +38,8 @@ fn unknown_parameter_is_located_at_its_key() {
 
 #[test]
 fn missing_parameter_is_reported_at_the_params() {
-    let err = rejected("missing-param", "stages:\n  - name: a\n    kind: theory.persson\n    params:\n      inv_k: 10\n");
+    let err =
+        rejected("missing-param", "stages:\n  - name: a\n    kind: theory.persson\n    params:\n      inv_k: 10\n");
     assert!(err.contains("p.yaml:5:7: error:"), "{err}");
     assert!(err.contains("missing field `V0`"), "{err}");
 }
@@ -92,7 +91,10 @@ fn needs_naming_no_stage_is_located() {
         "bad-needs",
         "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: 1}\n  - name: b\n    kind: util.sleep\n    needs: [a, aa, zzz]\n    params: {x: 1}\n",
     );
-    assert!(err.contains("p.yaml:7:16: error: stage `b` needs `aa`, which names no stage (did you mean `a`?)"), "{err}");
+    assert!(
+        err.contains("p.yaml:7:16: error: stage `b` needs `aa`, which names no stage (did you mean `a`?)"),
+        "{err}"
+    );
     assert!(err.contains("p.yaml:7:20: error: stage `b` needs `zzz`, which names no stage"), "{err}");
 }
 
@@ -125,7 +127,8 @@ fn yaml_syntax_errors_duplicates_and_bad_sweeps_are_located() {
         "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: 1}\n  - name: a\n    kind: util.sleep\n    params: {x: 2}\n",
     );
     assert!(err.contains("p.yaml:5:5: error: duplicate stage name `a` (first defined at line 2)"), "{err}");
-    let err = rejected("bad-sweep", "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: {logspace: [1, 2]}}\n");
+    let err =
+        rejected("bad-sweep", "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: {logspace: [1, 2]}}\n");
     assert!(err.contains("p.yaml:4:28: error:") && err.contains("takes [from, to, n]"), "{err}");
     let err = rejected("unknown-top", "stage:\n  - name: a\n");
     assert!(err.contains("p.yaml:1:1: error: unknown field `stage`"), "{err}");

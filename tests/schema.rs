@@ -10,9 +10,10 @@ fn generated() -> Value {
 
 #[test]
 fn committed_schema_is_current() {
-    let committed: Value =
-        serde_json::from_str(&std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/schema.json")).unwrap())
-            .unwrap();
+    let committed: Value = serde_json::from_str(
+        &std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/schema.json")).unwrap(),
+    )
+    .unwrap();
     assert!(committed == generated(), "pipelines/schema.json is stale: run `make schema`");
 }
 

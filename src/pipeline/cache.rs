@@ -111,7 +111,10 @@ impl Cache {
                 if mode == LockMode::Refuse {
                     return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
                 }
-                eprintln!("repro: the cache {} is in use by another repro ({holder}); waiting for it to finish", root.display());
+                eprintln!(
+                    "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
+                    root.display()
+                );
                 file.lock()?;
             }
             Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
@@ -204,7 +207,11 @@ fn decode_entry(key: &str, bytes: &[u8]) -> Result<Entry> {
     let body = &bytes[nl + 1..];
     let actual = content_hash(body);
     if actual != hash {
-        bail!("content hash mismatch (stored {}…, actual {}…): truncated or modified", &hash[..hash.len().min(12)], &actual[..12]);
+        bail!(
+            "content hash mismatch (stored {}…, actual {}…): truncated or modified",
+            &hash[..hash.len().min(12)],
+            &actual[..12]
+        );
     }
     let entry: Entry = serde_json::from_slice(body).context("entry does not parse")?;
     if entry.key != key {

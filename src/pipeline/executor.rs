@@ -7,7 +7,7 @@
 //! bytes changes no downstream key (early cutoff). A failing task fails its stage; stages
 //! that need it are skipped; independent stages carry on.
 
-use super::cache::{Cache, Entry, LockMode, Miss, StageManifest, ManifestPoint};
+use super::cache::{Cache, Entry, LockMode, ManifestPoint, Miss, StageManifest};
 use super::graph;
 use super::key::{stage_hash, task_key, Hash};
 use super::kind::{Inputs, Output, Registry};
@@ -67,7 +67,14 @@ pub fn pipeline_id(p: &Pipeline) -> String {
     blake3::hash(abs.to_string_lossy().as_bytes()).to_hex()[..16].to_string()
 }
 
-fn stale_reason(prev: Option<&StageManifest>, stage: &Stage, version: u32, inputs: &BTreeMap<String, Hash>, point: &Point, key: &str) -> String {
+fn stale_reason(
+    prev: Option<&StageManifest>,
+    stage: &Stage,
+    version: u32,
+    inputs: &BTreeMap<String, Hash>,
+    point: &Point,
+    key: &str,
+) -> String {
     let Some(m) = prev else { return "never run".into() };
     if m.kind != stage.kind {
         return format!("kind changed ({} -> {})", m.kind, stage.kind);
@@ -144,6 +151,9 @@ fn make_bar(multi: &indicatif::MultiProgress, stage: &str, n: usize) -> indicati
     bar
 }
 
+/// Per stage of a wave: its inputs' hashes, and per point its cached (key, output) if any.
+type Plan = (BTreeMap<String, Hash>, Vec<Option<(Hash, Output)>>);
+
 struct Job<'a> {
     stage: usize,
     point: usize,
@@ -175,7 +185,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     }
     let selected: BTreeSet<usize> =
         if target_idx.is_empty() { (0..p.stages.len()).collect() } else { graph::with_ancestors(p, &target_idx) };
-    let cache = if opts.dry_run { Cache::open_read_only(&opts.cache_dir) } else { Cache::open(&opts.cache_dir, opts.lock)? };
+    let cache =
+        if opts.dry_run { Cache::open_read_only(&opts.cache_dir) } else { Cache::open(&opts.cache_dir, opts.lock)? };
     let pid = pipeline_id(p);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(opts.jobs.unwrap_or(0)).build()?;
     let multi = indicatif::MultiProgress::with_draw_target(if opts.progress {
@@ -201,12 +212,15 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         let stages_here: Vec<usize> = order.iter().copied().filter(|&i| wave[i] == w).collect();
         let mut jobs: Vec<Job> = Vec::new();
         // Per stage: the inputs' hashes, and for each point its cached output if any.
-        let mut plans: BTreeMap<usize, (BTreeMap<String, Hash>, Vec<Option<(Hash, Output)>>)> = BTreeMap::new();
+        let mut plans: BTreeMap<usize, Plan> = BTreeMap::new();
         for &si in &stages_here {
             let stage = &p.stages[si];
             let kind = registry.get(&stage.kind).expect("validated kinds");
-            let need_states: Vec<(&String, &StageState)> =
-                stage.needs.iter().map(|n| (n, &states[&p.stages.iter().position(|s| &s.name == n).unwrap()])).collect();
+            let need_states: Vec<(&String, &StageState)> = stage
+                .needs
+                .iter()
+                .map(|n| (n, &states[&p.stages.iter().position(|s| &s.name == n).unwrap()]))
+                .collect();
             let blocked: Vec<&str> = need_states
                 .iter()
                 .filter(|(_, s)| matches!(s, StageState::Failed | StageState::Skipped))
@@ -215,7 +229,11 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
             let unknown = need_states.iter().any(|(_, s)| matches!(s, StageState::Unknown));
             if !blocked.is_empty() || unknown {
                 let (status, state, reason) = if !blocked.is_empty() {
-                    (Status::Skipped, StageState::Skipped, format!("needs {} which did not complete", blocked.join(", ")))
+                    (
+                        Status::Skipped,
+                        StageState::Skipped,
+                        format!("needs {} which did not complete", blocked.join(", ")),
+                    )
                 } else {
                     (Status::Unknown, StageState::Unknown, "upstream stages would run first".to_string())
                 };
@@ -381,7 +399,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 match c {
                     Some(kv) => points.push(kv),
                     None => match results.remove(&(si, pi)) {
-                        Some(Ok(out)) => points.push((jobs.iter().find(|j| j.stage == si && j.point == pi).unwrap().key.clone(), out)),
+                        Some(Ok(out)) => points
+                            .push((jobs.iter().find(|j| j.stage == si && j.point == pi).unwrap().key.clone(), out)),
                         Some(Err(_)) => state_ok = false,
                         None => unknown = true, // dry run
                     },
@@ -395,7 +414,9 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 let hashes: Vec<Hash> = points.iter().map(|(_, o)| super::cache::output_hash(o)).collect();
                 let mut table = Table::new();
                 for (_, o) in &points {
-                    table.append(&o.table).with_context(|| format!("assembling the table of stage `{}`", stage.name))?;
+                    table
+                        .append(&o.table)
+                        .with_context(|| format!("assembling the table of stage `{}`", stage.name))?;
                 }
                 manifests.push((
                     si,
@@ -407,7 +428,11 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             .points
                             .iter()
                             .zip(&points)
-                            .map(|(pt, (k, _))| ManifestPoint { label: pt.label.clone(), params: pt.params.clone(), key: k.clone() })
+                            .map(|(pt, (k, _))| ManifestPoint {
+                                label: pt.label.clone(),
+                                params: pt.params.clone(),
+                                key: k.clone(),
+                            })
                             .collect(),
                     },
                 ));
@@ -418,7 +443,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     }
     let _ = multi.clear();
 
-    let mut report = RunReport { pipeline: p.file.clone(), dry_run: opts.dry_run, tasks: records, ..Default::default() };
+    let mut report =
+        RunReport { pipeline: p.file.clone(), dry_run: opts.dry_run, tasks: records, ..Default::default() };
     if !opts.dry_run {
         for (si, m) in &manifests {
             cache.write_manifest(&pid, &p.stages[*si].name, m)?;
@@ -443,7 +469,13 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
 
 /// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
 /// `figures/<stage>.<ext>` for each artifact and `figures/<stage>.parquet` for its data.
-fn publish_stage(p: &Pipeline, stage: &Stage, registry: &Registry, points: &[(Hash, Output)], opts: &RunOptions) -> Result<Vec<String>> {
+fn publish_stage(
+    p: &Pipeline,
+    stage: &Stage,
+    registry: &Registry,
+    points: &[(Hash, Output)],
+    opts: &RunOptions,
+) -> Result<Vec<String>> {
     let kind = registry.get(&stage.kind).unwrap();
     let code_version = format!("{}@v{}", stage.kind, kind.version());
     let table = provenance_table(points, &code_version)?;
@@ -480,7 +512,8 @@ fn publish_stage(p: &Pipeline, stage: &Stage, registry: &Registry, points: &[(Ha
 pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path) -> Result<(usize, usize, u64)> {
     let mut live: BTreeSet<String> = BTreeSet::new();
     for p in pipelines {
-        let opts = RunOptions { cache_dir: cache_dir.to_path_buf(), dry_run: true, progress: false, ..Default::default() };
+        let opts =
+            RunOptions { cache_dir: cache_dir.to_path_buf(), dry_run: true, progress: false, ..Default::default() };
         let report = run(p, registry, &opts)?;
         live.extend(report.tasks.into_iter().filter_map(|t| t.key));
     }

@@ -104,9 +104,6 @@ mod tests {
         inputs.insert("up".to_string(), "abc".to_string());
         assert_ne!(base, task_key("k", 1, &json!({"a": 1}), &inputs));
         // Strings are length-prefixed: no two different objects share an encoding.
-        assert_ne!(
-            canonical_params(&json!({"ab": "c"})),
-            canonical_params(&json!({"a": "bc"}))
-        );
+        assert_ne!(canonical_params(&json!({"ab": "c"})), canonical_params(&json!({"a": "bc"})));
     }
 }

@@ -78,6 +78,9 @@ pub trait Kind: Send + Sync + 'static {
     fn run(p: &Self::Params, inputs: &Inputs) -> Result<Output>;
 }
 
+/// Canonical parameters of a point, and the (parameter path, stage) pairs it refers to.
+pub type Checked = (Value, Vec<(String, String)>);
+
 /// The object-safe form of [`Kind`] that the orchestrator uses.
 pub trait DynKind: Send + Sync {
     fn name(&self) -> &'static str;
@@ -87,7 +90,7 @@ pub trait DynKind: Send + Sync {
     fn params_schema(&self) -> Value;
     /// Parses and validates one point; returns its canonical parameters (defaults filled in)
     /// and the stages it references.
-    fn check(&self, params: &Value) -> Result<(Value, Vec<(String, String)>), Vec<FieldError>>;
+    fn check(&self, params: &Value) -> Result<Checked, Vec<FieldError>>;
     fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output>;
 }
 
@@ -117,7 +120,7 @@ impl<K: Kind> DynKind for Typed<K> {
     fn params_schema(&self) -> Value {
         serde_json::to_value(schemars::schema_for!(K::Params)).expect("schema serialises")
     }
-    fn check(&self, params: &Value) -> Result<(Value, Vec<(String, String)>), Vec<FieldError>> {
+    fn check(&self, params: &Value) -> Result<Checked, Vec<FieldError>> {
         let p = parse::<K>(params).map_err(|e| vec![e])?;
         let errors = K::validate(&p);
         if !errors.is_empty() {

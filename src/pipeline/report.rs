@@ -94,12 +94,10 @@ impl RunReport {
             let why = if reasons.is_empty() {
                 String::new()
             } else {
-                let list: Vec<String> = reasons
-                    .iter()
-                    .take(3)
-                    .map(|(r, n)| if *n > 1 { format!("{r} ×{n}") } else { r.clone() })
-                    .collect();
-                let more = if reasons.len() > 3 { format!(", … {} more reasons", reasons.len() - 3) } else { String::new() };
+                let list: Vec<String> =
+                    reasons.iter().take(3).map(|(r, n)| if *n > 1 { format!("{r} ×{n}") } else { r.clone() }).collect();
+                let more =
+                    if reasons.len() > 3 { format!(", … {} more reasons", reasons.len() - 3) } else { String::new() };
                 format!(" ({}{more})", list.join("; "))
             };
             s.push_str(&format!("  {stage:<16} {}{why}\n", parts.join(", ")));
@@ -127,7 +125,11 @@ impl RunReport {
             self.count(Status::Cached),
             self.count(Status::Failed),
             self.count(Status::Skipped),
-            if self.dry_run { format!(", {} unknown until upstream runs", self.count(Status::Unknown)) } else { String::new() },
+            if self.dry_run {
+                format!(", {} unknown until upstream runs", self.count(Status::Unknown))
+            } else {
+                String::new()
+            },
             self.wall_time_s
         ));
         s

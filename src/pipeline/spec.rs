@@ -187,10 +187,7 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
     let mut cx = Ctx { file, errors: Vec::new() };
     let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
     check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
-    let description = root_map
-        .get_scalar("description")
-        .map(|s| s.as_str().to_string())
-        .unwrap_or_default();
+    let description = root_map.get_scalar("description").map(|s| s.as_str().to_string()).unwrap_or_default();
     let mut stages = Vec::new();
     match root_map.get_node("stages") {
         None => cx.err(cx.loc(&root), "missing `stages`: a pipeline is a list of stages"),
@@ -307,7 +304,8 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             Err(errors) => {
                 for e in errors {
                     let location = locate(cx, params_map, &p.swept_nodes, &e);
-                    let point = if p.label.is_empty() { String::new() } else { format!(" (at sweep point {})", p.label) };
+                    let point =
+                        if p.label.is_empty() { String::new() } else { format!(" (at sweep point {})", p.label) };
                     cx.err(location, format!("stage `{name}` ({kind_name}){point}: {}", describe(&e)));
                 }
                 // One point's structural errors repeat at every point: report them once.
@@ -318,7 +316,10 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
     for (path, stage) in referenced {
         if !needs.contains(&stage) {
             let location = locate(cx, params_map, &BTreeMap::new(), &FieldError::new(&path, ""));
-            cx.err(location, format!("stage `{name}`: `{path}` refers to stage `{stage}`, which is not in its `needs`"));
+            cx.err(
+                location,
+                format!("stage `{name}`: `{path}` refers to stage `{stage}`, which is not in its `needs`"),
+            );
         }
     }
     Some(ParsedStage {
@@ -384,9 +385,7 @@ pub fn to_json(node: &Node) -> Value {
             }
         }
         Node::Sequence(seq) => Value::Array(seq.iter().map(to_json).collect()),
-        Node::Mapping(map) => {
-            Value::Object(map.iter().map(|(k, v)| (k.as_str().to_string(), to_json(v))).collect())
-        }
+        Node::Mapping(map) => Value::Object(map.iter().map(|(k, v)| (k.as_str().to_string(), to_json(v))).collect()),
     }
 }
 
@@ -436,9 +435,12 @@ fn sweep_values<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> O
             let a = number(cx, &items[0], "`from`")?;
             let b = number(cx, &items[1], "`to`")?;
             let n = match to_json(&items[2]).as_u64() {
-                Some(n) if n >= 1 && n <= 100_000 => n as usize,
+                Some(n) if (1..=100_000).contains(&n) => n as usize,
                 _ => {
-                    cx.err(cx.loc(&items[2]), format!("stage `{stage}`: parameter `{param}`: `n` must be an integer from 1 to 100000"));
+                    cx.err(
+                        cx.loc(&items[2]),
+                        format!("stage `{stage}`: parameter `{param}`: `n` must be an integer from 1 to 100000"),
+                    );
                     return None;
                 }
             };
@@ -492,7 +494,10 @@ fn expand_points<'a>(
     }
     let total: usize = axes.iter().map(|(_, v)| v.len()).product();
     if total > 1_000_000 {
-        cx.err(cx.loc(&Node::Mapping(params.clone())), format!("stage `{stage}`: the sweep has {total} points (more than a million)"));
+        cx.err(
+            cx.loc(&Node::Mapping(params.clone())),
+            format!("stage `{stage}`: the sweep has {total} points (more than a million)"),
+        );
         return None;
     }
     let mut points = Vec::with_capacity(total);
@@ -573,10 +578,7 @@ fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>,
 
 /// `layers[0].from` -> [layers, 0, from].
 fn split_path(path: &str) -> Vec<String> {
-    path.split(['.', '['])
-        .filter(|s| !s.is_empty())
-        .map(|s| s.trim_end_matches(']').to_string())
-        .collect()
+    path.split(['.', '[']).filter(|s| !s.is_empty()).map(|s| s.trim_end_matches(']').to_string()).collect()
 }
 
 fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
@@ -586,7 +588,10 @@ fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
             let first: &ParsedStage = &stages[j];
             cx.err(
                 s.stage.location.clone(),
-                format!("duplicate stage name `{}` (first defined at line {})", s.stage.name, first.stage.location.line),
+                format!(
+                    "duplicate stage name `{}` (first defined at line {})",
+                    s.stage.name, first.stage.location.line
+                ),
             );
         } else {
             index.insert(s.stage.name.as_str(), i);

@@ -121,12 +121,10 @@ impl Table {
 
     /// A column as f64 values, or an error naming the column and the columns that exist.
     pub fn f64_column(&self, name: &str) -> Result<Vec<f64>> {
-        let col = self.column(name).with_context(|| {
-            format!("no column `{name}` (columns: {})", self.column_names().join(", "))
-        })?;
-        (0..col.len())
-            .map(|i| col.f64_at(i).with_context(|| format!("column `{name}` is not numeric")))
-            .collect()
+        let col = self
+            .column(name)
+            .with_context(|| format!("no column `{name}` (columns: {})", self.column_names().join(", ")))?;
+        (0..col.len()).map(|i| col.f64_at(i).with_context(|| format!("column `{name}` is not numeric"))).collect()
     }
 
     pub fn column_names(&self) -> Vec<String> {
@@ -236,9 +234,7 @@ mod tests {
 
     #[test]
     fn parquet_round_trip() {
-        let t = Table::new()
-            .with_f64("x", vec![1.0, 2.5])
-            .with("s", ColumnData::Str(vec!["a".into(), "b".into()]));
+        let t = Table::new().with_f64("x", vec![1.0, 2.5]).with("s", ColumnData::Str(vec!["a".into(), "b".into()]));
         let bytes = t.to_parquet_bytes(&[("k".into(), "v".into())]).unwrap();
         let dir = std::env::temp_dir().join(format!("repro-pq-{}", std::process::id()));
         std::fs::write(&dir, &bytes).unwrap();

@@ -296,15 +296,16 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             let anno = match s.style {
                 Style::Line => chart.draw_series(LineSeries::new(pts, style)).map_err(err)?,
                 Style::Dashed => chart.draw_series(DashedLineSeries::new(pts, 8, 5, style)).map_err(err)?,
-                Style::Points => chart
-                    .draw_series(pts.into_iter().map(|q| Circle::new(q, 3, color.filled())))
-                    .map_err(err)?,
+                Style::Points => {
+                    chart.draw_series(pts.into_iter().map(|q| Circle::new(q, 3, color.filled()))).map_err(err)?
+                }
             };
             let legend_style = style;
             if s.style == Style::Points {
                 anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
             } else {
-                anno.label(s.label.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
+                anno.label(s.label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
             }
         }
         let pos = match p.legend {
@@ -342,14 +343,23 @@ impl Kind for Figure {
         for (name, r, log) in [("x_range", p.x_range, p.log_x), ("y_range", p.y_range, p.log_y)] {
             if let Some([a, b]) = r {
                 if !(b > a) || (log && a <= 0.0) {
-                    e.push(FieldError::new(name, format!("needs from < to{}, got [{a}, {b}]", if log { " and a positive start (log axis)" } else { "" })));
+                    e.push(FieldError::new(
+                        name,
+                        format!(
+                            "needs from < to{}, got [{a}, {b}]",
+                            if log { " and a positive start (log axis)" } else { "" }
+                        ),
+                    ));
                 }
             }
         }
         for (i, l) in p.layers.iter().enumerate() {
             if let Layer::Guide(g) = l {
                 if !(g.through[0] > 0.0 && g.x_from > 0.0 && g.x_to > g.x_from) {
-                    e.push(FieldError::new(&format!("layers[{i}].guide"), "needs positive x values with x_from < x_to"));
+                    e.push(FieldError::new(
+                        &format!("layers[{i}].guide"),
+                        "needs positive x values with x_from < x_to",
+                    ));
                 }
             }
         }
@@ -384,22 +394,13 @@ impl Kind for Figure {
             s.points.retain(|&(x, y)| (!p.log_x || x > 0.0) && (!p.log_y || y > 0.0));
         }
         let svg = render(p, &series)?;
-        let mut cols: (Vec<String>, Vec<f64>, Vec<f64>, Vec<String>, Vec<String>) = Default::default();
-        for s in &series {
-            for &(x, y) in &s.points {
-                cols.0.push(s.label.clone());
-                cols.1.push(x);
-                cols.2.push(y);
-                cols.3.push(s.x_name.clone());
-                cols.4.push(s.y_name.clone());
-            }
-        }
+        let rows = series.iter().flat_map(|s| s.points.iter().map(move |&(x, y)| (s, x, y)));
         let table = Table::new()
-            .with("series", ColumnData::Str(cols.0))
-            .with_f64("x", cols.1)
-            .with_f64("y", cols.2)
-            .with("x_name", ColumnData::Str(cols.3))
-            .with("y_name", ColumnData::Str(cols.4));
+            .with("series", ColumnData::Str(rows.clone().map(|(s, _, _)| s.label.clone()).collect()))
+            .with_f64("x", rows.clone().map(|(_, x, _)| x).collect())
+            .with_f64("y", rows.clone().map(|(_, _, y)| y).collect())
+            .with("x_name", ColumnData::Str(rows.clone().map(|(s, _, _)| s.x_name.clone()).collect()))
+            .with("y_name", ColumnData::Str(rows.map(|(s, _, _)| s.y_name.clone()).collect()));
         let mut out = Output::from(table);
         out.artifacts.insert("svg".into(), svg);
         Ok(out)

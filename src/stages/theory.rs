@@ -58,7 +58,8 @@ pub struct MaugisDugdale;
 impl Kind for MaugisDugdale {
     const NAME: &'static str = "theory.maugis_dugdale";
     const VERSION: u32 = 1;
-    const DOC: &'static str = "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
+    const DOC: &'static str =
+        "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
     type Params = MaugisParams;
 
@@ -114,7 +115,9 @@ impl Kind for MaugisPullOff {
     }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
-        let Some((load, a)) = classical::maugis_pull_off(p.lambda) else { bail!("no pull-off found for lambda = {}", p.lambda) };
+        let Some((load, a)) = classical::maugis_pull_off(p.lambda) else {
+            bail!("no pull-off found for lambda = {}", p.lambda)
+        };
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda])
             .with_f64("P_bar_pulloff", vec![load])
@@ -155,7 +158,8 @@ impl Kind for SphereLimits {
     fn run(p: &LimitsParams, _: &Inputs) -> Result<Output> {
         let a = radii(p.A_min, p.A_max, p.n);
         let mut t = Table::new();
-        let models: [(&str, fn(f64) -> f64); 3] =
+        type LoadOfRadius = fn(f64) -> f64;
+        let models: [(&str, LoadOfRadius); 3] =
             [("hertz", classical::hertz_load), ("jkr", classical::jkr_load), ("dmt", classical::dmt_load)];
         for (name, f) in models {
             t.append(
@@ -213,7 +217,8 @@ impl Kind for HertzJkrPressure {
         let mut jkr_rho: Vec<f64> =
             (0..p.n).map(|i| (a_j / a_h) * (th_max * i as f64 / (p.n - 1) as f64).sin()).collect();
         jkr_rho.extend([a_j / a_h, rho_max]);
-        let mut jkr_p: Vec<f64> = jkr_rho[..p.n].iter().map(|&r| classical::jkr_pressure(r, p.P_bar).unwrap()).collect();
+        let mut jkr_p: Vec<f64> =
+            jkr_rho[..p.n].iter().map(|&r| classical::jkr_pressure(r, p.P_bar).unwrap()).collect();
         jkr_p.extend([0.0, 0.0]);
         for (name, rho, pr) in [
             ("hertz", hertz_rho.clone(), hertz_rho.iter().map(|&r| classical::hertz_pressure(r)).collect::<Vec<_>>()),
@@ -247,7 +252,10 @@ pub struct PerssonParams {
 
 fn check_inv_k(e: &mut Vec<FieldError>, inv_k: f64) {
     if !(inv_k > 1.0 && inv_k.is_finite()) {
-        e.push(FieldError::new("inv_k", format!("1/k = E_inf/E0 must exceed 1 (the modulus ratio k lies in (0, 1)), got {inv_k}")));
+        e.push(FieldError::new(
+            "inv_k",
+            format!("1/k = E_inf/E0 must exceed 1 (the modulus ratio k lies in (0, 1)), got {inv_k}"),
+        ));
     }
 }
 
@@ -261,7 +269,8 @@ pub struct Persson;
 impl Kind for Persson {
     const NAME: &'static str = "theory.persson";
     const VERSION: u32 = 1;
-    const DOC: &'static str = "Persson's adhesionless friction mu* = mu R/a0 vs V0 = v tau/a0 for a standard linear solid (Eqs. 7.1-7.2)";
+    const DOC: &'static str =
+        "Persson's adhesionless friction mu* = mu R/a0 vs V0 = v tau/a0 for a standard linear solid (Eqs. 7.1-7.2)";
     const SWEEPABLE: &'static [&'static str] = &["inv_k", "V0"];
     type Params = PerssonParams;
 

@@ -93,7 +93,8 @@ pub fn mu_star(k: f64, v0: f64, rel_tol: f64) -> Friction {
 /// The maximum of mu* over V0 in [1e-4, 1e4] (log-spaced search refined by golden
 /// section): (V0 at the maximum, the maximum).
 pub fn max_mu_star(k: f64, rel_tol: f64) -> (f64, Friction) {
-    let (lv, _) = crate::numerics::roots::maximize(|lv: f64| mu_star(k, 10f64.powf(lv), rel_tol).mu_star, -4.0, 4.0, 41, 1e-5);
+    let (lv, _) =
+        crate::numerics::roots::maximize(|lv: f64| mu_star(k, 10f64.powf(lv), rel_tol).mu_star, -4.0, 4.0, 41, 1e-5);
     let v = 10f64.powf(lv);
     (v, mu_star(k, v, rel_tol))
 }

@@ -32,7 +32,8 @@ pub fn g_trailing(u: f64, k: f64) -> f64 {
         let x = lx.exp();
         x * (1.0 - (1.0 - k) * phi(u / x)) - 1.0
     };
-    let lx = crate::numerics::roots::bisect(g, 0.0, (1.0 / k).ln(), 1e-15).expect("Eq. 5.12 brackets its root on [1, 1/k]");
+    let lx =
+        crate::numerics::roots::bisect(g, 0.0, (1.0 / k).ln(), 1e-15).expect("Eq. 5.12 brackets its root on [1, 1/k]");
     lx.exp()
 }
 

@@ -86,10 +86,7 @@ impl Report {
 
     /// How many tasks of `stage` (or of all stages, if None) have `status`.
     pub fn count(&self, stage: Option<&str>, status: &str) -> usize {
-        self.tasks()
-            .iter()
-            .filter(|t| stage.is_none_or(|s| t["stage"] == s) && t["status"] == status)
-            .count()
+        self.tasks().iter().filter(|t| stage.is_none_or(|s| t["stage"] == s) && t["status"] == status).count()
     }
 
     pub fn stages(&self) -> Vec<String> {
