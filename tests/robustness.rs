@@ -122,3 +122,14 @@ fn gc_removes_only_entries_no_pipeline_refers_to() {
     let (_, _, r) = s.run("pipelines/a.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 0, "gc kept everything the pipeline needs");
 }
+
+#[test]
+fn temporaries_left_in_output_directories_are_removed() {
+    let s = Scratch::new("tmp-outputs");
+    s.write("p.yaml", &sleep_pipeline("[1]", 0, "t"));
+    s.write("figures/.repro-999-0.tmp", "half a figure");
+    s.write("tables/.repro-999-1.tmp", "half a table");
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!s.exists("figures/.repro-999-0.tmp") && !s.exists("tables/.repro-999-1.tmp"));
+}

@@ -446,6 +446,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     let mut report =
         RunReport { pipeline: p.file.clone(), dry_run: opts.dry_run, tasks: records, ..Default::default() };
     if !opts.dry_run {
+        remove_stale_temporaries(&[&opts.figures_dir, &opts.tables_dir]);
         for (si, m) in &manifests {
             cache.write_manifest(&pid, &p.stages[*si].name, m)?;
         }
@@ -465,6 +466,19 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         )?;
     }
     Ok(report)
+}
+
+/// Removes temporary files a killed run left while publishing (`.repro-<pid>-<n>.tmp`).
+fn remove_stale_temporaries(dirs: &[&Path]) {
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(dir) else { continue };
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().to_string();
+            if name.starts_with(".repro-") && name.ends_with(".tmp") {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
 }
 
 /// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
