@@ -5,6 +5,7 @@
 // `!(x > 0.0)` is how the checks say "not positive, or NaN": keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod bem;
 pub mod numerics;
 pub mod pipeline;
 pub mod stages;

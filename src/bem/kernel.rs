@@ -1,0 +1,165 @@
+//! Surface displacement of a uniform pressure strip moving steadily over a standard
+//! linear solid half-plane (thesis Eq. 4.10, corrected: ERRATA items 2, 9, 10).
+//!
+//! Model: plane strain, creep function J(t) = (1/E0)[1 - (1 - k) exp(-t/tau)], k = E0/E_inf.
+//! Units (Eq. 4.6 corrected, ERRATA 1): X = x/beta, U = u_z R/beta^2, P = p/sigma0, with
+//! beta = (R^2 dgamma/E0*)^(1/3); V = v tau/beta (ERRATA 9); the strip has half-width A.
+//! Convention (fixed for the whole crate, ERRATA 17): the indenter slides towards -X, so
+//! in its frame the material flows towards +X; the leading edge is on the left, the
+//! trailing edge on the right (as in Section 4.3.1 and Fig. 4.3). U is the displacement
+//! into the substrate (it opens the gap H = -Delta + X^2/2 + U of Eq. 4.7).
+//!
+//! Derivation (hereditary integral): a material point now at X felt the relaxed elastic
+//! displacement field U_el at X - V s a time s ago, so
+//!   U(X) = U_el(X) - (1 - k) Int_0^inf exp(-s) dU_el/dX(X - V s) V ds,
+//! with, for unit pressure and without the factor 2 lambda/pi of Eq. 4.12,
+//!   U_el(X) = -[(X+A) ln|X+A| - (X-A) ln|X-A| - 2A].
+//! Integrating by parts, with exp(-y)Ei(y) from `expint`, gives (dropping a constant,
+//! which the approach Delta absorbs):
+//!   K(X) = U_el(X) + (1 - k) V [g((X+A)/V) - g((X-A)/V)],  g(y) = ln|y| + gamma - exp(-y)Ei(y).
+//! This is the printed Eq. 4.10 with its overall sign reversed and X -> -X (the printed
+//! form slides towards +X); the tests check both that and the hereditary integral itself.
+//! Limits: V -> 0 gives the relaxed half-plane, V -> inf k times it (the instantaneous one).
+//! ERRATA 2's sign test U(0) - U(+-5A) > 0 holds in both elastic limits and upstream at
+//! every speed; downstream it fails for V ~ 5A, where creep after the strip has passed
+//! outgrows the displacement under it (see the test).
+
+use super::expint::g;
+
+fn xlogx(t: f64) -> f64 {
+    if t == 0.0 {
+        0.0
+    } else {
+        t * t.abs().ln()
+    }
+}
+
+/// The relaxed elastic displacement of a unit strip (without 2 lambda/pi).
+pub fn elastic_strip(x: f64, a: f64) -> f64 {
+    -(xlogx(x + a) - xlogx(x - a) - 2.0 * a)
+}
+
+/// The moving viscoelastic strip of half-width `a` at offset `x` from its centre, speed
+/// `v` = V tau/beta >= 0, modulus ratio `k` in (0, 1]. Offsets x = +-a are allowed only
+/// when v = 0 or k = 1.
+pub fn strip(x: f64, a: f64, v: f64, k: f64) -> f64 {
+    let el = elastic_strip(x, a);
+    if v == 0.0 || k == 1.0 {
+        return el;
+    }
+    el + (1.0 - k) * v * (g((x + a) / v) - g((x - a) / v))
+}
+
+/// Influence coefficients on a uniform grid of n elements of width 2a: c[m + n - 1] is the
+/// displacement at element i from unit pressure on element j, m = i - j. The matrix
+/// G_ij = c[i - j + n - 1] is Toeplitz.
+pub fn toeplitz_coefficients(n: usize, a: f64, v: f64, k: f64) -> Vec<f64> {
+    (0..2 * n - 1).map(|idx| strip(2.0 * a * (idx as f64 - (n as f64 - 1.0)), a, v, k)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bem::expint::exp_ei;
+    use crate::numerics::quad::integrate_panels;
+
+    /// The hereditary integral evaluated by quadrature (independent of the closed form).
+    fn by_quadrature(x: f64, a: f64, v: f64, k: f64) -> f64 {
+        // dU_el/dX at xi = -ln|(xi + a)/(xi - a)|; the integrand in eta = V s has log
+        // singularities at eta = x + a and x - a.
+        let f = |eta: f64| -(-((x - eta + a).abs().ln() - (x - eta - a).abs().ln())) * (-eta / v).exp();
+        let mut breaks = vec![0.0];
+        for s in [x - a, x + a] {
+            if s > 0.0 {
+                breaks.push(s);
+            }
+        }
+        let mut top = breaks[breaks.len() - 1].max(1e-3 * v);
+        while top < 80.0 * v {
+            top *= 1.5;
+            breaks.push(top);
+        }
+        let (integral, _) = integrate_panels(&f, &breaks, 1e-12);
+        elastic_strip(x, a) + (1.0 - k) * integral
+    }
+
+    #[test]
+    fn closed_form_matches_the_hereditary_integral() {
+        let a = 0.05;
+        for (v, k) in [(0.3, 0.1), (2.0, 0.01), (0.02, 0.5)] {
+            let xs = [-0.7, -0.12, -0.01, 0.03, 0.08, 0.4, 1.5];
+            // The closed form drops a constant: compare differences from x = xs[0].
+            let c0 = strip(xs[0], a, v, k) - by_quadrature(xs[0], a, v, k);
+            for x in xs {
+                let d = strip(x, a, v, k) - by_quadrature(x, a, v, k) - c0;
+                assert!(d.abs() < 1e-7, "v={v} k={k} x={x}: {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn printed_eq_4_10_with_corrected_sign_is_the_mirror_image() {
+        // Eq. 4.10 with +2 lambda P/pi (ERRATA 2), D = 0, describes sliding towards +X:
+        // compare it at -X with this kernel at X, up to a constant.
+        let printed = |x: f64, a: f64, v: f64, k: f64| {
+            let l = |t: f64| (t / a).powi(2).ln();
+            -(k / 2.0) * ((x + a) * l(x + a) - (x - a) * l(x - a))
+                + ((1.0 - k) / 2.0) * (2.0 * v * exp_ei(-(x + a) / v) - (x + v + a) * l(x + a))
+                - ((1.0 - k) / 2.0) * (2.0 * v * exp_ei(-(x - a) / v) - (x + v - a) * l(x - a))
+        };
+        let (a, v, k) = (0.1, 0.7, 0.1);
+        let c = strip(0.35, a, v, k) - printed(-0.35, a, v, k);
+        for x in [-2.0, -0.5, -0.15, 0.0, 0.05, 0.3, 1.0, 3.0] {
+            let d = strip(x, a, v, k) - printed(-x, a, v, k) - c;
+            assert!(d.abs() < 1e-9, "x={x}: {d}");
+        }
+    }
+
+    #[test]
+    fn elastic_limits() {
+        let a = 0.05;
+        let xs = [-1.0, -0.2, 0.0, 0.3, 2.0];
+        for k in [0.1, 0.001] {
+            // V -> 0: relaxed half-plane.
+            for &x in &xs {
+                assert!((strip(x, a, 1e-9, k) - elastic_strip(x, a)).abs() < 1e-7, "x={x}");
+            }
+            // V -> inf: k times the relaxed displacement, up to a constant.
+            let vel = 1e9;
+            for &x in &xs {
+                let d =
+                    (strip(x, a, vel, k) - strip(0.0, a, vel, k)) - k * (elastic_strip(x, a) - elastic_strip(0.0, a));
+                assert!(d.abs() < 1e-6, "k={k} x={x}: {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_compressive_strip_pushes_the_surface_in_and_trails_downstream() {
+        // ERRATA 2: U(0) - U(+-5A) > 0 for a compressive strip. It holds on both sides in
+        // the elastic limits (V << A, V >> 5A) and upstream at every speed; downstream it
+        // fails when V ~ 5A, because the material keeps creeping after it has passed the
+        // strip (U(0) - U(5A) = -0.019 at V = 1, A = 0.1, k = 0.1): physics, not a sign error.
+        let (a, k) = (0.1, 0.1);
+        for v in [0.0, 1e-3, 1e3, 1e6] {
+            assert!(strip(0.0, a, v, k) - strip(5.0 * a, a, v, k) > 0.04, "v={v}");
+            assert!(strip(0.0, a, v, k) - strip(-5.0 * a, a, v, k) > 0.04, "v={v}");
+        }
+        for v in [0.01, 0.1, 1.0, 10.0] {
+            assert!(strip(0.0, a, v, k) > strip(-5.0 * a, a, v, k), "v={v}");
+            // Delayed recovery: more displacement downstream than upstream.
+            assert!(strip(5.0 * a, a, v, k) > strip(-5.0 * a, a, v, k), "v={v}");
+        }
+        assert!(strip(0.0, a, 1.0, k) - strip(5.0 * a, a, 1.0, k) < 0.0);
+    }
+
+    #[test]
+    fn coefficients_are_finite_over_twelve_decades_of_speed() {
+        for v in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
+            for k in [1e-4, 0.1, 0.99] {
+                let c = toeplitz_coefficients(101, 0.02, v, k);
+                assert!(c.iter().all(|x| x.is_finite()), "v={v} k={k}");
+            }
+        }
+    }
+}
