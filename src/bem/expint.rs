@@ -108,8 +108,12 @@ fn ei_asymptotic(x: f64) -> f64 {
 /// g(y) = ln|y| + gamma - exp(-y) Ei(y): the moving-strip kernel's viscous part without its
 /// constant. For small |y| it is y (ln|y| + gamma - 1) + O(y^2 ln|y|), computed from the
 /// series so that nothing of order ln|y| cancels.
+/// g(0) = 0, its limit (needed for the displacement at a strip's own edge).
 pub fn g(y: f64) -> f64 {
-    assert!(y != 0.0 && y.is_finite(), "g needs a finite y != 0, got {y}");
+    assert!(y.is_finite(), "g needs a finite y, got {y}");
+    if y == 0.0 {
+        return 0.0;
+    }
     if y.abs() < 0.5 {
         // exp(-y) Ei(y) = exp(-y) (gamma + ln|y| + S(y)), S(y) = sum y^k/(k k!), so
         // g = (ln|y| + gamma)(1 - exp(-y)) - exp(-y) S(y).

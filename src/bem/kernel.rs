@@ -40,8 +40,8 @@ pub fn elastic_strip(x: f64, a: f64) -> f64 {
 }
 
 /// The moving viscoelastic strip of half-width `a` at offset `x` from its centre, speed
-/// `v` = V tau/beta >= 0, modulus ratio `k` in (0, 1]. Offsets x = +-a are allowed only
-/// when v = 0 or k = 1.
+/// `v` = V tau/beta >= 0, modulus ratio `k` in (0, 1]. At x = +-a (the strip's own edges)
+/// the displacement is finite and continuous.
 pub fn strip(x: f64, a: f64, v: f64, k: f64) -> f64 {
     let el = elastic_strip(x, a);
     if v == 0.0 || k == 1.0 {

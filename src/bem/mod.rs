@@ -3,3 +3,5 @@
 
 pub mod expint;
 pub mod kernel;
+pub mod solver;
+pub mod traction;
