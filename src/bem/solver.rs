@@ -423,6 +423,20 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     sol
 }
 
+/// A solution with the Richardson estimate of the discretisation error of mu*: the
+/// solver converges at second order in the element size (measured: successive
+/// differences shrink by 3.9 per halving), so the error of the fine solution is about
+/// |mu*(n) - mu*(n/2)| / 3. When the coarse solve does not converge, the estimate is
+/// |mu*| (no confidence).
+pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
+    let fine = solve(params, mesh);
+    let mu = fine.friction().mu_star;
+    let coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
+    let estimate =
+        if coarse.converged && fine.converged { (mu - coarse.friction().mu_star).abs() / 3.0 } else { mu.abs() };
+    (fine, if estimate.is_finite() { estimate } else { f64::MAX })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,77 @@
+//! Convergence studies and stress tests of the Chapter 4 boundary element solver.
+
+use repro::bem::solver::{default_mesh, solve, solve_with_estimate, Mesh, Params};
+
+const POINT: Params = Params { lambda: 1.0, w: 1.0, k: 0.1, v0: 1.0 };
+
+fn mu(params: &Params, mesh: Mesh) -> f64 {
+    let s = solve(params, mesh);
+    assert!(s.converged, "{params:?} {mesh:?}: residual {}", s.residual);
+    s.friction().mu_star
+}
+
+#[test]
+fn friction_converges_at_second_order_in_the_element_size() {
+    // Measured (release build): 2.08518, 2.08698, 2.08745, 2.08757 for n = 150..1200.
+    let m: Vec<f64> = [150, 300, 600].iter().map(|&n| mu(&POINT, Mesh { n, half_length: 6.0 })).collect();
+    let (d1, d2) = ((m[1] - m[0]).abs(), (m[2] - m[1]).abs());
+    assert!(d1 / d2 > 3.0, "halving the element size should divide the change by about 4: {m:?}");
+    assert!(d2 < 5e-4 * m[2], "{m:?}");
+    assert!((m[2] - 2.0875).abs() < 2e-3, "{m:?}");
+}
+
+#[test]
+fn friction_converges_in_the_domain_length() {
+    // Same element size, growing domain: the Lennard-Jones tail outside matters less.
+    let m: Vec<f64> =
+        [4.0, 8.0, 12.0].iter().map(|&l| mu(&POINT, Mesh { n: (50.0 * l) as usize, half_length: l })).collect();
+    let (d1, d2) = ((m[1] - m[0]).abs(), (m[2] - m[1]).abs());
+    assert!(d2 < 0.1 * d1 && d2 < 2e-4 * m[2], "{m:?}");
+}
+
+#[test]
+fn the_error_estimate_brackets_the_true_error() {
+    let reference = mu(&POINT, Mesh { n: 1200, half_length: 6.0 });
+    let (s, estimate) = solve_with_estimate(&POINT, Mesh { n: 300, half_length: 6.0 });
+    let error = (s.friction().mu_star - reference).abs();
+    assert!(error < 3.0 * estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
+    // The default mesh asks for about 1e-4 relative accuracy.
+    let m = default_mesh(&POINT);
+    let (s, estimate) = solve_with_estimate(&POINT, m);
+    assert!(estimate < 2e-4 * s.friction().mu_star, "{m:?}: {estimate}");
+}
+
+#[test]
+fn extreme_parameters_give_a_result_or_an_explicit_failure_never_nan() {
+    // A coarse mesh: this is about robustness, not accuracy.
+    let mesh = Mesh { n: 120, half_length: 6.0 };
+    let mut converged = 0;
+    let cases = [
+        (0.01, 1.0, 0.1, 1.0),
+        (30.0, 1.0, 0.1, 1.0),
+        (1.0, 1.0, 1e-4, 1.0),
+        (1.0, 1.0, 0.99, 1.0),
+        (1.0, 1.0, 0.1, 1e-6),
+        (1.0, 1.0, 0.1, 1e6),
+        (1.0, 1000.0, 0.1, 1.0),
+        (1.0, -1.6, 0.1, 1.0),
+        (3.0, 0.1, 0.001, 1e3),
+        (0.1, 0.01, 0.5, 1e-3),
+    ];
+    for (lambda, w, k, v0) in cases {
+        let p = Params { lambda, w, k, v0 };
+        let mesh = if w > 100.0 { Mesh { n: 160, half_length: 80.0 } } else { mesh };
+        let s = solve(&p, mesh);
+        let f = s.friction();
+        for (name, v) in [("mu*", f.mu_star), ("residual", s.residual), ("delta", s.delta)] {
+            assert!(v.is_finite() || !s.converged, "{p:?}: {name} = {v}");
+        }
+        if s.converged {
+            converged += 1;
+            assert!(s.residual <= 1e-9 && (s.load() - w).abs() < 1e-6 * w.abs().max(1.0), "{p:?}");
+            assert!(s.p.iter().chain(&s.h).all(|x| x.is_finite()), "{p:?}");
+        }
+    }
+    // Most of the grid converges even on this coarse mesh.
+    assert!(converged >= 7, "only {converged} of {} converged", cases.len());
+}
