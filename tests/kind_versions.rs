@@ -21,6 +21,8 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("theory.persson_max", json!({"inv_k": 10})),
         ("theory.persson_brener", json!({"k": 0.01, "V_PB": 30})),
         ("util.sleep", json!({"x": 1.25})),
+        ("bem.sweep", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0})),
+        ("bem.profile", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 40, "half_length": 5.0})),
         ("util.fail", json!({"message": "m", "x": 2})),
         (
             "figure",

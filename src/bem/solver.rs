@@ -21,7 +21,8 @@
 
 use super::kernel;
 use super::traction::{self, ALPHA};
-use faer::linalg::solvers::Solve;
+use crate::numerics::gmres::gmres;
+use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 use std::f64::consts::PI;
 
@@ -116,7 +117,10 @@ pub struct Solution {
     pub u_edges: Vec<f64>,
     pub delta: f64,
     pub converged: bool,
+    /// Newton iterations over the whole continuation path.
     pub iterations: usize,
+    /// LU factorisations of the Jacobian (the rest of the linear solves are GMRES).
+    pub factorizations: usize,
     pub residual: f64,
 }
 
@@ -232,6 +236,16 @@ impl<'a> System<'a> {
         Evaluation { p, dp, r, norm, merit }
     }
 
+    /// The Jacobian applied to a vector without forming it: O(n^2).
+    fn apply_jacobian(&self, dp: &[f64], v: &[f64]) -> Vec<f64> {
+        let n = self.op.mesh.n;
+        let dv: Vec<f64> = (0..n).map(|j| dp[j] * v[j]).collect();
+        let g = self.op.displacement(&dv);
+        let mut out: Vec<f64> = (0..n).map(|i| v[i] - g[i] + v[n]).collect();
+        out.push(2.0 * self.op.mesh.a() * dv.iter().sum::<f64>() * self.load_scale);
+        out
+    }
+
     fn jacobian(&self, dp: &[f64]) -> Mat<f64> {
         let n = self.op.mesh.n;
         let mut jac = Mat::<f64>::zeros(n + 1, n + 1);
@@ -249,8 +263,33 @@ impl<'a> System<'a> {
     }
 }
 
+/// The LU factors of an earlier Jacobian, kept across Newton iterations and continuation
+/// steps: the preconditioner of GMRES for the current Jacobian. Refactored only when
+/// GMRES does not converge in `GMRES_ITERATIONS` (Newton-Krylov with a frozen
+/// preconditioner: the Jacobian changes little from one iteration or step to the next).
+#[derive(Default)]
+struct Preconditioner {
+    lu: Option<PartialPivLu<f64>>,
+    factorizations: usize,
+}
+
+const GMRES_ITERATIONS: usize = 40;
+
+fn lu_solve(lu: &PartialPivLu<f64>, v: &[f64]) -> Vec<f64> {
+    let m = lu.solve(Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]));
+    (0..v.len()).map(|i| m[(i, 0)]).collect()
+}
+
 /// Newton's method from `h0`, `delta0`. Returns the solution (converged or not).
-fn newton(op: &Operator, params: &Params, h0: Vec<f64>, delta0: f64, tol: f64, max_iter: usize) -> Solution {
+fn newton(
+    op: &Operator,
+    params: &Params,
+    h0: Vec<f64>,
+    delta0: f64,
+    tol: f64,
+    max_iter: usize,
+    pre: &mut Preconditioner,
+) -> Solution {
     let n = op.mesh.n;
     let lambda = op.lambda;
     let sys = System::new(op, params);
@@ -260,15 +299,30 @@ fn newton(op: &Operator, params: &Params, h0: Vec<f64>, delta0: f64, tol: f64, m
     let mut iterations = 0;
     while ev.norm > tol && iterations < max_iter && ev.norm.is_finite() {
         iterations += 1;
-        let rhs = Mat::<f64>::from_fn(n + 1, 1, |i, _| -ev.r[i]);
-        let d = sys.jacobian(&ev.dp).partial_piv_lu().solve(&rhs);
-        if (0..=n).any(|i| !d[(i, 0)].is_finite()) {
+        let rhs: Vec<f64> = ev.r.iter().map(|v| -v).collect();
+        // Inexact Newton: solve to a relative accuracy that tightens with the residual.
+        let lin_tol = (ev.merit * ev.merit.min(0.1)).max(1e-3 * tol);
+        let krylov = pre.lu.as_ref().and_then(|lu| {
+            let g = gmres(|v| sys.apply_jacobian(&ev.dp, v), |v| lu_solve(lu, v), &rhs, lin_tol, GMRES_ITERATIONS);
+            g.converged.then_some(g.x)
+        });
+        let d = match krylov {
+            Some(d) => d,
+            None => {
+                let lu = sys.jacobian(&ev.dp).partial_piv_lu();
+                let d = lu_solve(&lu, &rhs);
+                pre.lu = Some(lu);
+                pre.factorizations += 1;
+                d
+            }
+        };
+        if d.iter().any(|v| !v.is_finite()) {
             break;
         }
         // Keep z = 1 + alpha lambda H above 30% of its current value.
         let mut step: f64 = 1.0;
         for i in 0..n {
-            let di = d[(i, 0)];
+            let di = d[i];
             if di < 0.0 {
                 step = step.min(0.7 * traction::z_of(h[i], lambda) / (ALPHA * lambda * -di));
             }
@@ -277,8 +331,8 @@ fn newton(op: &Operator, params: &Params, h0: Vec<f64>, delta0: f64, tol: f64, m
         // Backtracking on the Euclidean norm of the residual.
         let mut accepted = false;
         for _ in 0..30 {
-            let h_new: Vec<f64> = (0..n).map(|i| h[i] + step * d[(i, 0)]).collect();
-            let delta_new = delta + step * d[(n, 0)];
+            let h_new: Vec<f64> = (0..n).map(|i| h[i] + step * d[i]).collect();
+            let delta_new = delta + step * d[n];
             let trial = sys.eval(&h_new, delta_new);
             if trial.merit.is_finite() && trial.merit < (1.0 - 1e-4 * step) * ev.merit {
                 (h, delta, ev) = (h_new, delta_new, trial);
@@ -288,10 +342,10 @@ fn newton(op: &Operator, params: &Params, h0: Vec<f64>, delta0: f64, tol: f64, m
             step *= 0.5;
         }
         if std::env::var_os("REPRO_DEBUG").is_some() {
-            let dmax = (0..n).map(|i| d[(i, 0)].abs()).fold(0.0, f64::max);
+            let dmax = (0..n).map(|i| d[i].abs()).fold(0.0, f64::max);
             eprintln!(
                 "newton {iterations}: z-limit {z_limited:.3e} step {step:.3e} |d| {dmax:.3e} dDelta {:.3e} max {:.3e} l2 {:.3e} delta {delta:.4}",
-                d[(n, 0)], ev.norm, ev.merit
+                d[n], ev.norm, ev.merit
             );
         }
         if !accepted {
@@ -311,6 +365,7 @@ fn newton(op: &Operator, params: &Params, h0: Vec<f64>, delta0: f64, tol: f64, m
         delta,
         converged: ev.norm <= tol,
         iterations,
+        factorizations: pre.factorizations,
         residual: ev.norm,
     }
 }
@@ -391,14 +446,15 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     let at = |lambda: f64, v: f64| Params { lambda, ..*params }.with_v(v);
     let op0 = Operator::new(mesh, lam0, params.k, 0.0);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
-    let first = newton(&op0, &at(lam0, 0.0), h0, d0, TOLERANCE, 100);
+    let mut pre = Preconditioner::default();
+    let first = newton(&op0, &at(lam0, 0.0), h0, d0, TOLERANCE, 100, &mut pre);
     let mut iterations = first.iterations;
     if !first.converged {
         return first;
     }
     let (mut sol, it) = continue_geometric(lam0, params.lambda, 1.5, first, |lambda, warm| {
         let op = Operator::new(mesh, lambda, params.k, 0.0);
-        newton(&op, &at(lambda, 0.0), warm.h.clone(), warm.delta, TOLERANCE, 40)
+        newton(&op, &at(lambda, 0.0), warm.h.clone(), warm.delta, TOLERANCE, 40, &mut pre)
     });
     iterations += it;
     let v_target = params.v();
@@ -406,13 +462,13 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
         let v_start = 1e-3 * mesh.a();
         let (s, it) = if v_target <= v_start {
             let op = Operator::new(mesh, params.lambda, params.k, v_target);
-            let s = newton(&op, params, sol.h.clone(), sol.delta, TOLERANCE, 40);
+            let s = newton(&op, params, sol.h.clone(), sol.delta, TOLERANCE, 40, &mut pre);
             let it = s.iterations;
             (s, it)
         } else {
             continue_geometric(v_start, v_target, 4.0, sol, |v, warm| {
                 let op = Operator::new(mesh, params.lambda, params.k, v);
-                newton(&op, &params.with_v(v), warm.h.clone(), warm.delta, TOLERANCE, 40)
+                newton(&op, &params.with_v(v), warm.h.clone(), warm.delta, TOLERANCE, 40, &mut pre)
             })
         };
         sol = s;
@@ -420,6 +476,7 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     }
     sol.params = *params;
     sol.iterations = iterations;
+    sol.factorizations = pre.factorizations;
     sol
 }
 

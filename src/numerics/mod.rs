@@ -1,4 +1,5 @@
 //! Small numerical building blocks shared by the physics modules.
 
+pub mod gmres;
 pub mod quad;
 pub mod roots;

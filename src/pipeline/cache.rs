@@ -66,8 +66,19 @@ impl Entry {
     }
 }
 
-/// The hash of an output's canonical bytes (what early cutoff compares).
+/// Columns that record how a result was obtained rather than what it is (timings): they
+/// are stored and published but left out of the output hash, so that recomputing a task
+/// with the same result still cuts off everything downstream.
+pub const VOLATILE_COLUMNS: &[&str] = &["wall_time_s"];
+
+/// The hash of an output's canonical bytes without its volatile columns (what early
+/// cutoff compares).
 pub fn output_hash(output: &Output) -> Hash {
+    if output.table.columns.iter().any(|(n, _)| VOLATILE_COLUMNS.contains(&n.as_str())) {
+        let mut stable = output.clone();
+        stable.table.columns.retain(|(n, _)| !VOLATILE_COLUMNS.contains(&n.as_str()));
+        return content_hash(&serde_json::to_vec(&stable).expect("outputs serialise"));
+    }
     content_hash(&serde_json::to_vec(output).expect("outputs serialise"))
 }
 
@@ -237,4 +248,19 @@ pub struct ManifestPoint {
     pub label: String,
     pub params: Value,
     pub key: Hash,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::table::Table;
+
+    #[test]
+    fn timings_do_not_count_in_the_output_hash() {
+        let a = Output::from(Table::new().with_f64("mu_star", vec![0.5]).with_f64("wall_time_s", vec![1.0]));
+        let b = Output::from(Table::new().with_f64("mu_star", vec![0.5]).with_f64("wall_time_s", vec![2.0]));
+        let c = Output::from(Table::new().with_f64("mu_star", vec![0.6]).with_f64("wall_time_s", vec![1.0]));
+        assert_eq!(output_hash(&a), output_hash(&b));
+        assert_ne!(output_hash(&a), output_hash(&c));
+    }
 }

@@ -1,6 +1,7 @@
 //! Stage kinds: where the orchestrator (parameters, tables) meets the physics.
 //! Each kind binds one physics function to typed, validated parameters and a table.
 
+pub mod bem;
 pub mod figure;
 pub mod theory;
 pub mod util;
@@ -11,6 +12,7 @@ use crate::pipeline::kind::Registry;
 pub fn registry() -> Registry {
     let mut r = Registry::new();
     theory::register(&mut r);
+    bem::register(&mut r);
     figure::register(&mut r);
     util::register(&mut r);
     r

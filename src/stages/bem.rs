@@ -1,0 +1,164 @@
+//! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
+//! (`bem.sweep`) and the fields of one point (`bem.profile`).
+
+use super::check;
+use crate::bem::solver::{self, Mesh, Params, Solution};
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::table::{ColumnData, Table};
+use anyhow::Result;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct BemParams {
+    /// Maugis-Tabor parameter lambda (Eq. 4.9), > 0 (sweepable).
+    pub lambda: f64,
+    /// Dimensionless load W (Eq. 4.6), > 0 (sweepable).
+    pub W: f64,
+    /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
+    pub k: f64,
+    /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18), >= 0 (sweepable).
+    pub V0: f64,
+    /// Number of elements; default: chosen from lambda and W (`bem::solver::default_mesh`).
+    #[serde(default)]
+    pub n: Option<usize>,
+    /// Half-length of the domain in units of beta; default: chosen from lambda and W.
+    #[serde(default)]
+    pub half_length: Option<f64>,
+}
+
+impl BemParams {
+    fn physics(&self) -> Params {
+        Params { lambda: self.lambda, w: self.W, k: self.k, v0: self.V0 }
+    }
+
+    fn mesh(&self) -> Mesh {
+        let d = solver::default_mesh(&self.physics());
+        Mesh { n: self.n.unwrap_or(d.n), half_length: self.half_length.unwrap_or(d.half_length) }
+    }
+
+    fn validate(&self) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", self.lambda);
+        check::positive(&mut e, "W", self.W);
+        check::in_open(&mut e, "k", self.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
+        if !(self.V0 >= 0.0 && self.V0.is_finite()) {
+            e.push(FieldError::new("V0", format!("must be zero or positive, got {}", self.V0)));
+        }
+        if let Some(n) = self.n {
+            if !(8..=6000).contains(&n) {
+                e.push(FieldError::new("n", format!("must lie in 8..=6000 (dense LU), got {n}")));
+            }
+        }
+        if let Some(l) = self.half_length {
+            check::positive(&mut e, "half_length", l);
+        }
+        e
+    }
+
+    fn parameter_columns(&self, rows: usize) -> Table {
+        Table::new()
+            .with_f64("lambda", vec![self.lambda; rows])
+            .with_f64("W", vec![self.W; rows])
+            .with_f64("k", vec![self.k; rows])
+            .with_f64("V0", vec![self.V0; rows])
+    }
+}
+
+/// A value for a table: the value when finite, else 0 (the row says `converged = false`).
+fn finite(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        0.0
+    }
+}
+
+fn extremes(s: &Solution) -> (f64, f64) {
+    let max = s.p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let min = s.p.iter().copied().fold(f64::INFINITY, f64::min);
+    (finite(max), finite(min))
+}
+
+/// One sliding point: friction and its parts, contact edges, approach, extreme
+/// pressures, solver diagnostics and the Richardson error estimate of mu*.
+pub struct BemSweep;
+
+impl Kind for BemSweep {
+    const NAME: &'static str = "bem.sweep";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
+    type Params = BemParams;
+
+    fn validate(p: &BemParams) -> Vec<FieldError> {
+        p.validate()
+    }
+
+    fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let (s, estimate) = solver::solve_with_estimate(&p.physics(), p.mesh());
+        let f = s.friction();
+        let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
+        let (p_max, p_min) = extremes(&s);
+        let ok = s.converged && f.mu_star.is_finite();
+        let t = p
+            .parameter_columns(1)
+            .with_f64("mu_star", vec![finite(f.mu_star)])
+            .with_f64("mu_adh", vec![finite(f.mu_adh)])
+            .with_f64("mu_comp", vec![finite(f.mu_comp)])
+            .with_f64("x_lead", vec![finite(lead)])
+            .with_f64("x_trail", vec![finite(trail)])
+            .with_f64("approach", vec![finite(s.delta)])
+            .with_f64("p_max_bar", vec![p_max])
+            .with_f64("p_min_bar", vec![p_min])
+            .with("converged", ColumnData::Bool(vec![ok]))
+            .with("iterations", ColumnData::I64(vec![s.iterations as i64]))
+            .with_f64("residual", vec![if s.residual.is_finite() { s.residual } else { f64::MAX }])
+            .with_f64("error_estimate", vec![if estimate.is_finite() { estimate } else { f64::MAX }])
+            .with("n", ColumnData::I64(vec![s.mesh.n as i64]))
+            .with_f64("half_length", vec![s.mesh.half_length])
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
+        Ok(t.into())
+    }
+}
+
+/// The fields of one point: P(X), U(X), H(X) and the friction integrand P dU/dX.
+pub struct BemProfile;
+
+impl Kind for BemProfile {
+    const NAME: &'static str = "bem.profile";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
+    type Params = BemParams;
+
+    fn validate(p: &BemParams) -> Vec<FieldError> {
+        p.validate()
+    }
+
+    fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
+        let s = solver::solve(&p.physics(), p.mesh());
+        if !s.converged {
+            anyhow::bail!("the point did not converge (residual {:e} after {} iterations)", s.residual, s.iterations);
+        }
+        let two_a = 2.0 * s.mesh.a();
+        let integrand: Vec<f64> = (0..s.p.len()).map(|j| s.p[j] * (s.u_edges[j + 1] - s.u_edges[j]) / two_a).collect();
+        let n = s.x.len();
+        let t = p
+            .parameter_columns(n)
+            .with_f64("X", s.x.clone())
+            .with_f64("P", s.p.clone())
+            .with_f64("U", s.u.clone())
+            .with_f64("H", s.h.clone())
+            .with_f64("P_dU_dX", integrand);
+        Ok(t.into())
+    }
+}
+
+pub fn register(r: &mut Registry) {
+    r.add::<BemSweep>().add::<BemProfile>();
+}
