@@ -92,6 +92,14 @@ enum Command {
         #[command(flatten)]
         cache: CacheArg,
     },
+    /// Run one point of a stage kind and print its output, e.g.
+    /// `repro point bem.sweep lambda=1 W=1 k=0.1 V0=1`.
+    Point {
+        /// The stage kind (`repro kinds`).
+        kind: String,
+        /// Parameters as NAME=VALUE (values read as YAML scalars).
+        params: Vec<String>,
+    },
     /// Print the JSON Schema of pipeline files.
     Schema,
     /// List the stage kinds with their code versions.
@@ -190,6 +198,46 @@ fn main() -> ExitCode {
                 ps.len(),
                 bytes as f64 / 1e3
             );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Point { kind, params } => {
+            let Some(k) = registry.get(&kind) else {
+                let known: Vec<_> = registry.names().collect();
+                return Err(
+                    UsageError(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))).into()
+                );
+            };
+            let mut yaml = String::new();
+            for p in &params {
+                let Some((name, value)) = p.split_once('=') else {
+                    return Err(UsageError(format!("`{p}`: parameters are NAME=VALUE")).into());
+                };
+                yaml.push_str(&format!("{name}: {value}\n"));
+            }
+            let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
+                .map_err(|e| UsageError(format!("parameters: {e}")))?;
+            let (canonical, _) = k.check(&spec::to_json(&node)).map_err(|errors| {
+                UsageError(
+                    errors
+                        .iter()
+                        .map(|e| format!("parameter `{}`: {}", e.path, e.message))
+                        .collect::<Vec<_>>()
+                        .join("; "),
+                )
+            })?;
+            let out = k.run(&canonical, &repro::pipeline::kind::Inputs { tables: Default::default() })?;
+            let t = &out.table;
+            for row in 0..t.n_rows().min(50) {
+                for (name, col) in &t.columns {
+                    println!("{name:>16} = {}", col.display_at(row));
+                }
+                if t.n_rows() > 1 {
+                    println!();
+                }
+            }
+            if t.n_rows() > 50 {
+                println!("({} more rows)", t.n_rows() - 50);
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Schema => {

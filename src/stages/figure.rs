@@ -183,9 +183,6 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
 
 const PALETTE: [RGBColor; 11] = [
     RGBColor(0, 0, 0),
-    RGBColor(188, 189, 34),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -193,6 +190,9 @@ const PALETTE: [RGBColor; 11] = [
     RGBColor(255, 127, 14),
     RGBColor(140, 86, 75),
     RGBColor(23, 190, 207),
+    RGBColor(188, 189, 34),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
 ];
 
 /// "10⁻³" for an integer exponent.
@@ -331,7 +331,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
