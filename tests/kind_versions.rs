@@ -25,6 +25,14 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("bem.profile", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 40, "half_length": 5.0})),
         ("util.fail", json!({"message": "m", "x": 2})),
         (
+            "bem.maxima",
+            json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0_range": [0.1, 10.0], "grid": 4, "log_tol": 0.2, "n": 40, "half_length": 5.0}),
+        ),
+        (
+            "fit.powerlaw",
+            json!({"from": "input", "x": "a", "y": "b", "x_min": 0.1, "x_max": 10, "group_by": "g", "expected_slope": 0.5}),
+        ),
+        (
             "figure",
             json!({
                 "title": "t", "x_label": "x", "y_label": "y", "log_x": true,

@@ -85,6 +85,19 @@ fn the_thesis_pipeline_makes_five_figures_and_the_theory_values_hold() {
         assert!((mu[i] / persson - 1.0).abs() < 0.07, "V0 = {}: {} vs {persson}", v0[i], mu[i]);
         assert!(est[i] < 1e-2 * mu[i], "V0 = {}: estimate {}", v0[i], est[i]);
     }
+    let bm = table("bem_max_large_load");
+    let (m, v) = (column(&bm, "mu_star_max")[0], column(&bm, "V0_at_max")[0]);
+    assert!((m - 0.483).abs() < 0.003 && v > 1.0 && v < 1.7, "BEM maximum {m} at V0 = {v}");
+    // Fits: slope 1 at low speed for every k; 1/2 in the intermediate range for k = 1e-4
+    // (for k >= 0.01 that range is already saturating: ERRATA 14).
+    let lin = table("fit_pb_linear");
+    for (s, e) in column(&lin, "slope").iter().zip(column(&lin, "slope_std_error")) {
+        assert!((s - 1.0).abs() < 1e-3 && e < 1e-3, "{s} +- {e}");
+    }
+    let sq = table("fit_pb_sqrt");
+    let i = column(&sq, "k").iter().position(|&k| k == 1e-4).unwrap();
+    let (s, e) = (column(&sq, "slope")[i], column(&sq, "slope_std_error")[i]);
+    assert!((s - 0.5).abs() < 0.02 && e < 0.01, "{s} +- {e}");
     // Provenance: the code version on every row.
     assert!(strings(&pb, "code_version").iter().all(|c| c == "theory.persson_brener@v1"));
 }

@@ -3,5 +3,6 @@
 
 pub mod expint;
 pub mod kernel;
+pub mod maxima;
 pub mod solver;
 pub mod traction;

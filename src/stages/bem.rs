@@ -159,6 +159,95 @@ impl Kind for BemProfile {
     }
 }
 
+fn default_v0_range() -> [f64; 2] {
+    [1e-3, 1e3]
+}
+fn default_grid() -> usize {
+    13
+}
+fn default_log_tol() -> f64 {
+    0.01
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct MaximaParams {
+    /// Maugis-Tabor parameter (sweepable).
+    pub lambda: f64,
+    /// Dimensionless load (sweepable).
+    pub W: f64,
+    /// Modulus ratio k = E0/E_inf (sweepable).
+    pub k: f64,
+    /// Speeds searched, [from, to].
+    #[serde(default = "default_v0_range")]
+    pub V0_range: [f64; 2],
+    /// Log-spaced bracketing points over the range.
+    #[serde(default = "default_grid")]
+    pub grid: usize,
+    /// Golden-section tolerance in log10 V0.
+    #[serde(default = "default_log_tol")]
+    pub log_tol: f64,
+    #[serde(default)]
+    pub n: Option<usize>,
+    #[serde(default)]
+    pub half_length: Option<f64>,
+}
+
+impl MaximaParams {
+    fn point(&self) -> BemParams {
+        BemParams { lambda: self.lambda, W: self.W, k: self.k, V0: 1.0, n: self.n, half_length: self.half_length }
+    }
+}
+
+/// The maximum over V0 of mu* for one (lambda, W, k) (Figs. 4.6-4.7).
+pub struct BemMaxima;
+
+impl Kind for BemMaxima {
+    const NAME: &'static str = "bem.maxima";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
+    type Params = MaximaParams;
+
+    fn validate(p: &MaximaParams) -> Vec<FieldError> {
+        let mut e = p.point().validate();
+        let [a, b] = p.V0_range;
+        if !(a > 0.0 && b > a) {
+            e.push(FieldError::new("V0_range", format!("needs 0 < from < to, got [{a}, {b}]")));
+        }
+        check::at_least(&mut e, "grid", p.grid, 3);
+        check::in_open(&mut e, "log_tol", p.log_tol, 0.0, 1.0, "the tolerance");
+        e
+    }
+
+    fn run(p: &MaximaParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let point = p.point();
+        let m = crate::bem::maxima::max_over_speed(
+            &point.physics(),
+            point.mesh(),
+            p.V0_range[0],
+            p.V0_range[1],
+            p.grid,
+            p.log_tol,
+        );
+        let t = Table::new()
+            .with_f64("lambda", vec![p.lambda])
+            .with_f64("W", vec![p.W])
+            .with_f64("k", vec![p.k])
+            .with_f64("mu_star_max", vec![finite(m.friction.mu_star)])
+            .with_f64("V0_at_max", vec![m.v0])
+            .with_f64("mu_adh", vec![finite(m.friction.mu_adh)])
+            .with_f64("mu_comp", vec![finite(m.friction.mu_comp)])
+            .with("evaluations", ColumnData::I64(vec![m.evaluations as i64]))
+            .with("converged", ColumnData::Bool(vec![m.all_converged]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
+        Ok(t.into())
+    }
+}
+
 pub fn register(r: &mut Registry) {
-    r.add::<BemSweep>().add::<BemProfile>();
+    r.add::<BemSweep>().add::<BemProfile>().add::<BemMaxima>();
 }

@@ -3,6 +3,7 @@
 
 pub mod bem;
 pub mod figure;
+pub mod fit;
 pub mod theory;
 pub mod util;
 
@@ -14,6 +15,7 @@ pub fn registry() -> Registry {
     theory::register(&mut r);
     bem::register(&mut r);
     figure::register(&mut r);
+    fit::register(&mut r);
     util::register(&mut r);
     r
 }
