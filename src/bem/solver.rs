@@ -161,6 +161,18 @@ impl Solution {
         Some((lead, trail))
     }
 
+    /// Half-width of the region where the surfaces are closer than the separation of
+    /// peak Lennard-Jones tension, H_c = (3^(1/6) - 1)/(alpha lambda): the contact in the
+    /// JKR sense (the P > 0 width is not: in 2D the JKR pressure turns tensile inside the
+    /// contact, ERRATA 19). None if no element is that close.
+    pub fn adhered_half_width(&self) -> Option<f64> {
+        let hc = (3f64.powf(1.0 / 6.0) - 1.0) / (ALPHA * self.params.lambda);
+        let first = self.h.iter().position(|&h| h <= hc)?;
+        let last = self.h.iter().rposition(|&h| h <= hc)?;
+        let a = self.mesh.a();
+        Some(0.5 * (self.x[last] - self.x[first]) + a)
+    }
+
     /// lambda Int P dX: the load actually carried (equals W when converged).
     pub fn load(&self) -> f64 {
         self.params.lambda * 2.0 * self.mesh.a() * self.p.iter().sum::<f64>()
