@@ -293,19 +293,36 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             let style = ShapeStyle::from(&color).stroke_width(2);
             let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (tx(x), ty(y))).filter(inside).collect();
             let err = |e| anyhow::anyhow!("{e:?}");
-            let anno = match s.style {
-                Style::Line => chart.draw_series(LineSeries::new(pts, style)).map_err(err)?,
-                Style::Dashed => chart.draw_series(DashedLineSeries::new(pts, 8, 5, style)).map_err(err)?,
-                Style::Points => {
-                    chart.draw_series(pts.into_iter().map(|q| Circle::new(q, 3, color.filled()))).map_err(err)?
+            // Lines are drawn as the runs of points inside the axes: a curve that leaves
+            // the plotted range is not clamped to its border.
+            let in_view = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
+            let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for q in &pts {
+                if in_view(q) {
+                    runs.last_mut().unwrap().push(*q);
+                } else if !runs.last().unwrap().is_empty() {
+                    runs.push(Vec::new());
                 }
-            };
+            }
+            runs.retain(|r| !r.is_empty());
             let legend_style = style;
-            if s.style == Style::Points {
-                anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
-            } else {
-                anno.label(s.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
+            for (ri, run) in runs.into_iter().enumerate() {
+                let anno = match s.style {
+                    Style::Line => chart.draw_series(LineSeries::new(run, style)).map_err(err)?,
+                    Style::Dashed => chart.draw_series(DashedLineSeries::new(run, 8, 5, style)).map_err(err)?,
+                    Style::Points => {
+                        chart.draw_series(run.into_iter().map(|q| Circle::new(q, 3, color.filled()))).map_err(err)?
+                    }
+                };
+                if ri > 0 {
+                    continue;
+                }
+                if s.style == Style::Points {
+                    anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
+                } else {
+                    anno.label(s.label.clone())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
+                }
             }
         }
         let pos = match p.legend {
@@ -331,7 +348,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
