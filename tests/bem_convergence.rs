@@ -1,6 +1,6 @@
 //! Convergence studies and stress tests of the Chapter 4 boundary element solver.
 
-use repro::bem::solver::{default_mesh, solve, solve_with_estimate, Mesh, Params};
+use repro::bem::solver::{default_mesh, solve, solve_to_tolerance, solve_with_estimate, Mesh, Params};
 
 const POINT: Params = Params { lambda: 1.0, w: 1.0, k: 0.1, v0: 1.0 };
 
@@ -74,4 +74,20 @@ fn extreme_parameters_give_a_result_or_an_explicit_failure_never_nan() {
     }
     // Most of the grid converges even on this coarse mesh.
     assert!(converged >= 7, "only {converged} of {} converged", cases.len());
+}
+
+#[test]
+fn the_mesh_is_refined_until_the_requested_accuracy_is_met() {
+    // From n = 150: the estimate is 2.9e-4 relative at n = 300, 7.5e-5 at n = 600
+    // (measured sequence 2.08518, 2.08698, 2.08745, 2.08757): asking 1e-4 stops at n = 600.
+    let (s, estimate) = solve_to_tolerance(&POINT, Mesh { n: 150, half_length: 6.0 }, 1e-4, 6000);
+    let mu = s.friction().mu_star;
+    assert_eq!(s.mesh.n, 600);
+    assert!(estimate <= 1e-4 * mu);
+    let reference = 2.08757;
+    assert!((mu - reference).abs() < 2.0 * estimate + 2e-5, "{mu} vs {reference}, estimate {estimate}");
+    // A cap on n ends the refinement and reports the estimate reached.
+    let (capped, est) = solve_to_tolerance(&POINT, Mesh { n: 150, half_length: 6.0 }, 1e-6, 300);
+    assert_eq!(capped.mesh.n, 300);
+    assert!(est > 1e-6 * capped.friction().mu_star);
 }

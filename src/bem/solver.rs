@@ -498,12 +498,35 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
 /// |mu*(n) - mu*(n/2)| / 3. When the coarse solve does not converge, the estimate is
 /// |mu*| (no confidence).
 pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
-    let fine = solve(params, mesh);
+    solve_to_tolerance(params, mesh, f64::INFINITY, mesh.n)
+}
+
+fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
     let mu = fine.friction().mu_star;
-    let coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
     let estimate =
         if coarse.converged && fine.converged { (mu - coarse.friction().mu_star).abs() / 3.0 } else { mu.abs() };
-    (fine, if estimate.is_finite() { estimate } else { f64::MAX })
+    if estimate.is_finite() {
+        estimate
+    } else {
+        f64::MAX
+    }
+}
+
+/// Solves on `mesh`, then doubles the number of elements (same domain) until the
+/// Richardson estimate is at most `rel_tol` |mu*| or the next mesh would exceed `n_max`.
+/// Each refinement reuses the previous fine solution as the coarse one.
+pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, f64) {
+    let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
+    let mut fine = solve(params, mesh);
+    loop {
+        let estimate = richardson(&fine, &coarse);
+        if estimate <= rel_tol * fine.friction().mu_star.abs() || 2 * fine.mesh.n > n_max {
+            return (fine, estimate);
+        }
+        let n = 2 * fine.mesh.n;
+        coarse = fine;
+        fine = solve(params, Mesh { n, ..mesh });
+    }
 }
 
 #[cfg(test)]

@@ -27,6 +27,10 @@ pub struct BemParams {
     /// Half-length of the domain in units of beta; default: chosen from lambda and W.
     #[serde(default)]
     pub half_length: Option<f64>,
+    /// Requested relative accuracy of mu*: the number of elements is doubled (up to 6000)
+    /// until the Richardson error estimate meets it. Default: one mesh, estimate reported.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rel_tol: Option<f64>,
 }
 
 impl BemParams {
@@ -54,6 +58,9 @@ impl BemParams {
         }
         if let Some(l) = self.half_length {
             check::positive(&mut e, "half_length", l);
+        }
+        if let Some(t) = self.rel_tol {
+            check::in_open(&mut e, "rel_tol", t, 0.0, 1.0, "the requested accuracy");
         }
         e
     }
@@ -99,7 +106,10 @@ impl Kind for BemSweep {
 
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (s, estimate) = solver::solve_with_estimate(&p.physics(), p.mesh());
+        let (s, estimate) = match p.rel_tol {
+            Some(tol) => solver::solve_to_tolerance(&p.physics(), p.mesh(), tol, 6000),
+            None => solver::solve_with_estimate(&p.physics(), p.mesh()),
+        };
         let f = s.friction();
         let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
         let (p_max, p_min) = extremes(&s);
@@ -196,7 +206,15 @@ pub struct MaximaParams {
 
 impl MaximaParams {
     fn point(&self) -> BemParams {
-        BemParams { lambda: self.lambda, W: self.W, k: self.k, V0: 1.0, n: self.n, half_length: self.half_length }
+        BemParams {
+            lambda: self.lambda,
+            W: self.W,
+            k: self.k,
+            V0: 1.0,
+            n: self.n,
+            half_length: self.half_length,
+            rel_tol: None,
+        }
     }
 }
 
