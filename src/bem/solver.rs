@@ -339,7 +339,6 @@ fn newton(
                 step = step.min(0.7 * traction::z_of(h[i], lambda) / (ALPHA * lambda * -di));
             }
         }
-        let z_limited = step;
         // Backtracking on the Euclidean norm of the residual.
         let mut accepted = false;
         for _ in 0..30 {
@@ -352,13 +351,6 @@ fn newton(
                 break;
             }
             step *= 0.5;
-        }
-        if std::env::var_os("REPRO_DEBUG").is_some() {
-            let dmax = (0..n).map(|i| d[i].abs()).fold(0.0, f64::max);
-            eprintln!(
-                "newton {iterations}: z-limit {z_limited:.3e} step {step:.3e} |d| {dmax:.3e} dDelta {:.3e} max {:.3e} l2 {:.3e} delta {delta:.4}",
-                d[n], ev.norm, ev.merit
-            );
         }
         if !accepted {
             break;

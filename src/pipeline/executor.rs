@@ -195,11 +195,12 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         indicatif::ProgressDrawTarget::hidden()
     });
 
+    let index: BTreeMap<&str, usize> = p.stages.iter().enumerate().map(|(i, s)| (s.name.as_str(), i)).collect();
     let order: Vec<usize> = graph::topological_order(p).into_iter().filter(|i| selected.contains(i)).collect();
     let mut wave = vec![0usize; p.stages.len()];
     for &i in &order {
         for n in &p.stages[i].needs {
-            let j = p.stages.iter().position(|s| &s.name == n).unwrap();
+            let j = index[n.as_str()];
             wave[i] = wave[i].max(wave[j] + 1);
         }
     }
@@ -216,11 +217,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         for &si in &stages_here {
             let stage = &p.stages[si];
             let kind = registry.get(&stage.kind).expect("validated kinds");
-            let need_states: Vec<(&String, &StageState)> = stage
-                .needs
-                .iter()
-                .map(|n| (n, &states[&p.stages.iter().position(|s| &s.name == n).unwrap()]))
-                .collect();
+            let need_states: Vec<(&String, &StageState)> =
+                stage.needs.iter().map(|n| (n, &states[&index[n.as_str()]])).collect();
             let blocked: Vec<&str> = need_states
                 .iter()
                 .filter(|(_, s)| matches!(s, StageState::Failed | StageState::Skipped))
@@ -297,7 +295,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         }
 
         // Compute (or, in a dry run, list) the jobs of this wave.
-        let mut results: BTreeMap<(usize, usize), Result<Output, String>> = BTreeMap::new();
+        let mut results: BTreeMap<(usize, usize), Result<(Hash, Output), String>> = BTreeMap::new();
         if opts.dry_run {
             for j in &jobs {
                 let stage = &p.stages[j.stage];
@@ -328,7 +326,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         .needs
                         .iter()
                         .map(|n| {
-                            let j = p.stages.iter().position(|s| &s.name == n).unwrap();
+                            let j = index[n.as_str()];
                             match &states[&j] {
                                 StageState::Done { table, .. } => (n.clone(), table),
                                 _ => unreachable!(),
@@ -384,7 +382,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     wall_time_s: dt,
                     error: out.as_ref().err().cloned(),
                 });
-                results.insert((si, pi), out);
+                results.insert((si, pi), out.map(|o| (j.key.clone(), o)));
             }
         }
 
@@ -399,8 +397,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 match c {
                     Some(kv) => points.push(kv),
                     None => match results.remove(&(si, pi)) {
-                        Some(Ok(out)) => points
-                            .push((jobs.iter().find(|j| j.stage == si && j.point == pi).unwrap().key.clone(), out)),
+                        Some(Ok(kv)) => points.push(kv),
                         Some(Err(_)) => state_ok = false,
                         None => unknown = true, // dry run
                     },

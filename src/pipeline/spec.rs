@@ -495,7 +495,7 @@ fn expand_points<'a>(
     let total: usize = axes.iter().map(|(_, v)| v.len()).product();
     if total > 1_000_000 {
         cx.err(
-            cx.loc(&Node::Mapping(params.clone())),
+            mapping_location(cx.file, params),
             format!("stage `{stage}`: the sweep has {total} points (more than a million)"),
         );
         return None;

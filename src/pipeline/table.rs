@@ -166,13 +166,6 @@ impl Table {
         Ok(())
     }
 
-    /// Adds a column holding the same string on every row.
-    pub fn with_constant_str(mut self, name: &str, value: &str) -> Self {
-        let n = self.n_rows();
-        self.push(name, ColumnData::Str(vec![value.to_string(); n]));
-        self
-    }
-
     /// Canonical bytes: the same table always gives the same bytes.
     pub fn canonical_bytes(&self) -> Vec<u8> {
         serde_json::to_vec(self).expect("a table always serialises")
