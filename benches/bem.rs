@@ -2,7 +2,7 @@
 //! 1201), with the error of mu* against a reference at N = 2401 on the same domain, so
 //! that speed is always quoted with accuracy. Run: `cargo bench --bench bem`.
 
-use repro::bem::solver::{default_mesh, solve, Mesh, Params};
+use repro::bem::solver::{domain_half_length, solve, Mesh, Params};
 use std::time::Instant;
 
 fn main() {
@@ -12,7 +12,7 @@ fn main() {
     );
     for (lambda, w) in [(1.0, 1.0), (3.0, 1.0), (1.0, 0.1)] {
         let params = Params { lambda, w, k: 0.1, v0: 1.0 };
-        let half_length = default_mesh(&params).half_length;
+        let half_length = domain_half_length(&params, 1e-3);
         let reference = solve(&params, Mesh { n: 2401, half_length });
         assert!(reference.converged, "reference did not converge");
         let mu_ref = reference.friction().mu_star;

@@ -1,6 +1,6 @@
 //! Convergence studies and stress tests of the Chapter 4 boundary element solver.
 
-use repro::bem::solver::{default_mesh, solve, solve_to_tolerance, solve_with_estimate, Mesh, Params};
+use repro::bem::solver::{solve, solve_to_tolerance, solve_with_estimate, starting_mesh, Mesh, Params};
 
 const POINT: Params = Params { lambda: 1.0, w: 1.0, k: 0.1, v0: 1.0 };
 
@@ -35,10 +35,13 @@ fn the_error_estimate_brackets_the_true_error() {
     let (s, estimate) = solve_with_estimate(&POINT, Mesh { n: 300, half_length: 6.0 });
     let error = (s.friction().mu_star - reference).abs();
     assert!(error < 3.0 * estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
-    // The default mesh asks for about 1e-4 relative accuracy.
-    let m = default_mesh(&POINT);
-    let (s, estimate) = solve_with_estimate(&POINT, m);
-    assert!(estimate < 2e-4 * s.friction().mu_star, "{m:?}: {estimate}");
+    // The default resolution: the starting mesh for 1e-3, refined until the estimate meets
+    // it; the answer then lies within that of the converged value (2.08757 on L = 6).
+    let m = starting_mesh(&POINT, 1e-3);
+    let (s, estimate) = solve_to_tolerance(&POINT, m, 1e-3, 16_000);
+    let mu = s.friction().mu_star;
+    assert!(estimate <= 1e-3 * mu, "{m:?}: {estimate}");
+    assert!((mu - 2.08757).abs() < 1e-3 * mu, "{m:?}: {mu}");
 }
 
 #[test]

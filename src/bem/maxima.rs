@@ -3,7 +3,7 @@
 //! golden-section search in log V0 between the neighbours of the best grid point, so that
 //! only the speeds the search needs are solved.
 
-use super::solver::{self, Friction, Mesh, Params};
+use super::solver::{Friction, Params, Solution};
 use crate::numerics::roots::maximize;
 use std::cell::RefCell;
 
@@ -11,6 +11,8 @@ use std::cell::RefCell;
 pub struct Maximum {
     pub v0: f64,
     pub friction: Friction,
+    /// The error estimate of mu* at the maximum (that of the solve nearest to it).
+    pub error_estimate: f64,
     /// Number of BEM solves.
     pub evaluations: usize,
     /// Whether every solve of the search converged.
@@ -18,14 +20,22 @@ pub struct Maximum {
 }
 
 /// Searches V0 in [v0_min, v0_max] with `grid` log-spaced points, refining to `tol` in
-/// log10 V0. Unconverged solves count as -inf (never the maximum) and are reported.
-pub fn max_over_speed(base: &Params, mesh: Mesh, v0_min: f64, v0_max: f64, grid: usize, tol: f64) -> Maximum {
-    let log: RefCell<Vec<(f64, Friction, bool)>> = RefCell::new(Vec::new());
+/// log10 V0; `solve` gives the solution of a point and the error estimate of its mu*.
+/// Unconverged solves count as -inf (never the maximum) and are reported.
+pub fn max_over_speed(
+    base: &Params,
+    v0_min: f64,
+    v0_max: f64,
+    grid: usize,
+    tol: f64,
+    solve: impl Fn(&Params) -> (Solution, f64),
+) -> Maximum {
+    let log: RefCell<Vec<(f64, Friction, bool, f64)>> = RefCell::new(Vec::new());
     let eval = |lv: f64| {
         let v0 = 10f64.powf(lv);
-        let s = solver::solve(&Params { v0, ..*base }, mesh);
+        let (s, estimate) = solve(&Params { v0, ..*base });
         let f = s.friction();
-        log.borrow_mut().push((v0, f, s.converged));
+        log.borrow_mut().push((v0, f, s.converged, estimate));
         if s.converged && f.mu_star.is_finite() {
             f.mu_star
         } else {
@@ -37,7 +47,8 @@ pub fn max_over_speed(base: &Params, mesh: Mesh, v0_min: f64, v0_max: f64, grid:
     let v0 = 10f64.powf(lv);
     let best = log.iter().filter(|e| e.2).min_by(|a, b| (a.0 / v0).ln().abs().total_cmp(&(b.0 / v0).ln().abs()));
     let friction = best.map_or(Friction { mu_star: 0.0, mu_adh: 0.0, mu_comp: 0.0 }, |e| e.1);
-    Maximum { v0, friction, evaluations: log.len(), all_converged: log.iter().all(|e| e.2) }
+    let error_estimate = best.map_or(f64::MAX, |e| e.3);
+    Maximum { v0, friction, error_estimate, evaluations: log.len(), all_converged: log.iter().all(|e| e.2) }
 }
 
 #[cfg(test)]
@@ -49,7 +60,8 @@ mod tests {
         // At W = 100 adhesion is negligible: max mu* = 0.483 near V0 = 1.3 (the thesis:
         // about 0.48; Persson's approximation 0.479 at V0 = 1.2).
         let base = Params { lambda: 0.5, w: 100.0, k: 0.1, v0: 1.0 };
-        let m = max_over_speed(&base, Mesh { n: 300, half_length: 28.0 }, 0.01, 100.0, 9, 0.01);
+        let mesh = crate::bem::solver::Mesh { n: 300, half_length: 28.0 };
+        let m = max_over_speed(&base, 0.01, 100.0, 9, 0.01, |p| crate::bem::solver::solve_with_estimate(p, mesh));
         assert!(m.all_converged);
         assert!((m.friction.mu_star - 0.483).abs() < 0.003, "{m:?}");
         assert!(m.v0 > 1.0 && m.v0 < 1.7, "{m:?}");

@@ -22,6 +22,7 @@
 use super::kernel;
 use super::traction::{self, ALPHA};
 use crate::numerics::gmres::gmres;
+use crate::numerics::toeplitz::Toeplitz;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 use std::f64::consts::PI;
@@ -88,21 +89,39 @@ pub fn jkr_pull_off() -> f64 {
     -3.0 * (PI / 16.0).powf(1.0 / 3.0)
 }
 
-/// A default mesh for the parameters: the domain spans 2.5 contact half-widths (JKR, or
-/// Hertz at large loads) and at least the range where the Lennard-Jones tail still
-/// carries a relative 1e-4 of the load; n elements resolve both the contact (100 per
-/// half-width) and the cohesive zone, of length about pi/(8 lambda^2) (8 per zone).
-pub fn default_mesh(p: &Params) -> Mesh {
-    let a_ref = jkr_half_width(p.w).unwrap_or(jkr_half_width(0.0).unwrap()).max(p.a0());
-    // Tail: P ~ -(3 sqrt 3/2)(alpha lambda X^2/2)^-3; its load beyond L is about
-    // lambda * 2 * 2.6 * 8 / (5 (alpha lambda)^3 L^5); ask for 1e-4 max(|W|, 0.1).
-    let tail = (2.0 * 2.6 * 8.0 * p.lambda / (5.0 * (ALPHA * p.lambda).powi(3) * 1e-4 * p.w.abs().max(0.1))).powf(0.2);
-    let half_length = (2.5 * a_ref).max(tail);
+/// The domain half-length for a requested relative accuracy: 2.5 contact half-widths
+/// (JKR, or Hertz at large loads), and at least the range beyond which the Lennard-Jones
+/// tail would carry less than a fraction rel_tol of max(|W|, 0.1) (measured at lambda = 3,
+/// W = 0.1: truncating at L = 5, 7 changes mu* by 5e-5, 7e-6 relative to L = 10). The tail pressure
+/// is P ~ -(3 sqrt 3/2)(alpha lambda X^2/2)^-3, so its load beyond L is about
+/// lambda * 2 * 2.6 * 8 / (5 (alpha lambda)^3 L^5).
+pub fn domain_half_length(p: &Params, rel_tol: f64) -> f64 {
+    let a_ref = contact_scale(p);
+    let eps = rel_tol * p.w.abs().max(0.1);
+    let tail = (2.0 * 2.6 * 8.0 * p.lambda / (5.0 * (ALPHA * p.lambda).powi(3) * eps)).powf(0.2);
+    (2.5 * a_ref).max(tail)
+}
+
+/// The contact half-width the mesh is built for: JKR (relaxed), at least Hertz.
+fn contact_scale(p: &Params) -> f64 {
+    jkr_half_width(p.w).unwrap_or(jkr_half_width(0.0).unwrap()).max(p.a0())
+}
+
+/// The first mesh of a solve to tolerance: the domain of `domain_half_length`, elements of
+/// the smaller of 1/40 of the contact half-width and 1/8 of the cohesive zone, whose
+/// length is about pi/(8 lambda^2) (Maugis-Dugdale in 2D); 64..=8000 elements.
+pub fn starting_mesh(p: &Params, rel_tol: f64) -> Mesh {
+    let half_length = domain_half_length(p, rel_tol);
     let zone = PI / (8.0 * p.lambda * p.lambda);
-    let h = (a_ref / 100.0).min(zone / 8.0);
-    let n = ((2.0 * half_length / h).ceil() as usize).clamp(64, 4000);
+    let h = (contact_scale(p) / 40.0).min(zone / 2.0);
+    let n = ((2.0 * half_length / h).ceil() as usize).clamp(64, 8000);
     Mesh { n, half_length }
 }
+
+/// The default requested accuracy of mu* (relative).
+pub const DEFAULT_REL_TOL: f64 = 1e-3;
+/// The largest mesh a solve to tolerance refines to by default.
+pub const DEFAULT_N_MAX: usize = 16_000;
 
 /// A solved (or not) point with its fields.
 #[derive(Clone, Debug)]
@@ -185,8 +204,10 @@ struct Operator {
     lambda: f64,
     /// Node-to-node Toeplitz coefficients, times 2 lambda/pi.
     nodes: Vec<f64>,
-    /// Node-to-edge coefficients, times 2 lambda/pi: edge e, element m at offset index e - m + n - 1.
-    edges: Vec<f64>,
+    /// The same as an FFT-based product (O(n log n)).
+    nodes_fft: Toeplitz,
+    /// Node-to-edge products (edge e, element m: diagonal e - m + n - 1), by FFT.
+    edges_fft: Toeplitz,
 }
 
 impl Operator {
@@ -194,21 +215,21 @@ impl Operator {
         let n = mesh.n;
         let a = mesh.a();
         let s = 2.0 * lambda / PI;
-        let nodes = kernel::toeplitz_coefficients(n, a, v, k).into_iter().map(|c| c * s).collect();
+        let nodes: Vec<f64> = kernel::toeplitz_coefficients(n, a, v, k).into_iter().map(|c| c * s).collect();
         // Edge e sits at X_0 - A + 2A e; offset from element m: 2A (e - m) - A.
-        let edges =
+        let edges: Vec<f64> =
             (0..2 * n).map(|idx| s * kernel::strip(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k)).collect();
-        Operator { mesh, lambda, nodes, edges }
+        let nodes_fft = Toeplitz::new(&nodes, n, n);
+        let edges_fft = Toeplitz::new(&edges, n, n + 1);
+        Operator { mesh, lambda, nodes, nodes_fft, edges_fft }
     }
 
     fn displacement(&self, p: &[f64]) -> Vec<f64> {
-        let n = self.mesh.n;
-        (0..n).map(|i| (0..n).map(|j| self.nodes[i + n - 1 - j] * p[j]).sum()).collect()
+        self.nodes_fft.apply(p)
     }
 
     fn edge_displacement(&self, p: &[f64]) -> Vec<f64> {
-        let n = self.mesh.n;
-        (0..=n).map(|e| (0..n).map(|m| self.edges[e + n - 1 - m] * p[m]).sum()).collect()
+        self.edges_fft.apply(p)
     }
 }
 
@@ -258,6 +279,8 @@ impl<'a> System<'a> {
         out
     }
 
+    /// The dense Jacobian (the finite-difference test checks `apply_jacobian` against it).
+    #[cfg(test)]
     fn jacobian(&self, dp: &[f64]) -> Mat<f64> {
         let n = self.op.mesh.n;
         let mut jac = Mat::<f64>::zeros(n + 1, n + 1);
@@ -275,21 +298,95 @@ impl<'a> System<'a> {
     }
 }
 
-/// The LU factors of an earlier Jacobian, kept across Newton iterations and continuation
-/// steps: the preconditioner of GMRES for the current Jacobian. Refactored only when
-/// GMRES does not converge in `GMRES_ITERATIONS` (Newton-Krylov with a frozen
-/// preconditioner: the Jacobian changes little from one iteration or step to the next).
+/// The preconditioner of GMRES: the Jacobian with the columns of the far field dropped.
+/// J = I - G D + (approach column, load row), D = diag(dP/dH). Far from the contact dP/dH
+/// decays like H^-4, so columns j with |dP_j/dH| (|G|_1 + load weight) below `DROP`
+/// change J by at most DROP in the 1-norm; replacing them by identity columns leaves a
+/// system of the active nodes only (plus the approach), factored by a dense LU (faer),
+/// and an explicit update of the rest by one FFT product. It is frozen across Newton
+/// iterations and continuation steps (Newton-Krylov), rebuilt when GMRES stalls.
+struct ActiveLu {
+    n: usize,
+    idx: Vec<usize>,
+    d: Vec<f64>,
+    lu: PartialPivLu<f64>,
+    g: Toeplitz,
+}
+
+const DROP: f64 = 1.0;
+
+impl ActiveLu {
+    fn new(sys: &System, dp: &[f64], drop: f64) -> ActiveLu {
+        let n = sys.op.mesh.n;
+        let load_weight = 2.0 * sys.op.mesh.a() * sys.load_scale;
+        let col_norm = sys.op.nodes.iter().map(|c| c.abs()).sum::<f64>() + load_weight;
+        let idx: Vec<usize> = (0..n).filter(|&j| dp[j].abs() * col_norm > drop).collect();
+        let d: Vec<f64> = idx.iter().map(|&j| dp[j]).collect();
+        let m = idx.len();
+        let mat = Mat::<f64>::from_fn(m + 1, m + 1, |a, b| match (a < m, b < m) {
+            (true, true) => f64::from(a == b) - sys.op.nodes[idx[a] + n - 1 - idx[b]] * d[b],
+            (true, false) => 1.0,
+            (false, true) => load_weight * d[b],
+            (false, false) => 0.0,
+        });
+        ActiveLu { n, lu: mat.partial_piv_lu(), idx, d, g: sys.op.nodes_fft.clone() }
+    }
+
+    fn solve(&self, b: &[f64]) -> Vec<f64> {
+        let (n, m) = (self.n, self.idx.len());
+        let mut small: Vec<f64> = self.idx.iter().map(|&j| b[j]).collect();
+        small.push(b[n]);
+        let xs = lu_solve(&self.lu, &small);
+        let delta = xs[m];
+        let mut t = vec![0.0; n];
+        for (a, &j) in self.idx.iter().enumerate() {
+            t[j] = self.d[a] * xs[a];
+        }
+        let g = self.g.apply(&t);
+        let mut x: Vec<f64> = (0..n).map(|i| b[i] + g[i] - delta).collect();
+        for (a, &j) in self.idx.iter().enumerate() {
+            x[j] = xs[a];
+        }
+        x.push(delta);
+        x
+    }
+}
+
 #[derive(Default)]
 struct Preconditioner {
-    lu: Option<PartialPivLu<f64>>,
+    active: Option<ActiveLu>,
     factorizations: usize,
 }
 
-const GMRES_ITERATIONS: usize = 40;
+const GMRES_ITERATIONS: usize = 30;
 
 fn lu_solve(lu: &PartialPivLu<f64>, v: &[f64]) -> Vec<f64> {
     let m = lu.solve(Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]));
     (0..v.len()).map(|i| m[(i, 0)]).collect()
+}
+
+impl Preconditioner {
+    /// The Newton step J d = rhs to `tol`: GMRES with the frozen preconditioner; if it
+    /// stalls, again with a fresh one; if that stalls too, an exact LU of the whole J.
+    fn newton_step(&mut self, sys: &System, dp: &[f64], rhs: &[f64], tol: f64) -> Vec<f64> {
+        let apply = |v: &[f64]| sys.apply_jacobian(dp, v);
+        for fresh in [false, true] {
+            if fresh || self.active.is_none() {
+                self.active = Some(ActiveLu::new(sys, dp, DROP));
+                self.factorizations += 1;
+            }
+            let pre = self.active.as_ref().unwrap();
+            let g = gmres(apply, |v| pre.solve(v), rhs, tol, GMRES_ITERATIONS);
+            if g.converged {
+                return g.x;
+            }
+        }
+        let exact = ActiveLu::new(sys, dp, 0.0);
+        self.factorizations += 1;
+        let d = exact.solve(rhs);
+        self.active = Some(exact);
+        d
+    }
 }
 
 /// Newton's method from `h0`, `delta0`. Returns the solution (converged or not).
@@ -313,21 +410,8 @@ fn newton(
         iterations += 1;
         let rhs: Vec<f64> = ev.r.iter().map(|v| -v).collect();
         // Inexact Newton: solve to a relative accuracy that tightens with the residual.
-        let lin_tol = (ev.merit * ev.merit.min(0.1)).max(1e-3 * tol);
-        let krylov = pre.lu.as_ref().and_then(|lu| {
-            let g = gmres(|v| sys.apply_jacobian(&ev.dp, v), |v| lu_solve(lu, v), &rhs, lin_tol, GMRES_ITERATIONS);
-            g.converged.then_some(g.x)
-        });
-        let d = match krylov {
-            Some(d) => d,
-            None => {
-                let lu = sys.jacobian(&ev.dp).partial_piv_lu();
-                let d = lu_solve(&lu, &rhs);
-                pre.lu = Some(lu);
-                pre.factorizations += 1;
-                d
-            }
-        };
+        let lin_tol = (ev.merit * ev.merit.min(0.01)).max(1e-3 * tol);
+        let d = pre.newton_step(&sys, &ev.dp, &rhs, lin_tol);
         if d.iter().any(|v| !v.is_finite()) {
             break;
         }
@@ -405,26 +489,45 @@ fn initial_state(op: &Operator, params: &Params) -> (Vec<f64>, f64) {
 }
 
 /// Geometric continuation of a parameter from `from` to `to` (either direction): each
-/// step multiplies it by at most `factor`, warm-starting from the last converged state;
-/// a failed step is retried with the square root of the factor, down to a factor of
-/// 1.001. Returns the solution at `to` (converged or the failed last trial) and the
-/// Newton iterations spent.
+/// step multiplies it by at most `factor`, starting Newton from a secant predictor (linear
+/// extrapolation in the logarithm of the parameter through the last two converged states)
+/// or, if that fails or would bring a surface through the other, from the last state; a
+/// failed step is retried with the square root of the factor, down to a factor of 1.001.
+/// Returns the solution at `to` (converged or the failed last trial) and the Newton
+/// iterations spent.
 fn continue_geometric(
     from: f64,
     to: f64,
     mut factor: f64,
     start: Solution,
-    mut step: impl FnMut(f64, &Solution) -> Solution,
+    mut step: impl FnMut(f64, &[f64], f64) -> Solution,
 ) -> (Solution, usize) {
     let mut iterations = 0;
     let mut value = from;
     let mut last = start;
+    let mut previous: Option<(f64, Vec<f64>, f64)> = None;
     let up = to > from;
+    let lambda = last.params.lambda;
     while value != to {
         let next = if up { (value * factor).min(to) } else { (value / factor).max(to) };
-        let trial = step(next, &last);
+        let predicted = previous.as_ref().and_then(|(v_prev, h_prev, d_prev)| {
+            let r = (next / value).ln() / (value / v_prev).ln();
+            let h: Vec<f64> = last.h.iter().zip(h_prev).map(|(h1, h0)| h1 + r * (h1 - h0)).collect();
+            let safe =
+                h.iter().zip(&last.h).all(|(&hp, &h1)| traction::z_of(hp, lambda) > 0.3 * traction::z_of(h1, lambda));
+            safe.then(|| (h, last.delta + r * (last.delta - d_prev)))
+        });
+        let mut trial = match &predicted {
+            Some((h, d)) => step(next, h, *d),
+            None => step(next, &last.h, last.delta),
+        };
         iterations += trial.iterations;
+        if !trial.converged && predicted.is_some() {
+            trial = step(next, &last.h, last.delta);
+            iterations += trial.iterations;
+        }
         if trial.converged {
+            previous = Some((value, std::mem::take(&mut last.h), last.delta));
             value = next;
             last = trial;
             factor = (factor * factor).min(4.0);
@@ -442,37 +545,59 @@ fn continue_geometric(
 /// Hertzian guess); larger lambda are reached by continuation.
 const LAMBDA_START: f64 = 0.3;
 
-/// Solves one point. Path: the relaxed elastic problem (V = 0) at lambda = min(lambda,
-/// 0.3) from a Hertzian guess; continuation in lambda up to its value; then continuation
-/// in the speed V from 1e-3 element widths up to its value. Load control throughout.
+/// Solves one point by continuation, under load control throughout. Newton starts at the
+/// relaxed elastic problem (V = 0) with lambda0 = min(lambda, 0.3), from a Hertzian guess
+/// (soft, long-range adhesion converges from it). The speed is then raised at lambda0 from
+/// 1e-3 element widths to its value, and lambda last, at the final speed. If that path
+/// fails, the other order (lambda at V = 0, then the speed) is tried. On coarse meshes at
+/// large lambda the discrete crack front has folds (lattice trapping): raising lambda at
+/// V = 0 can end next to one, where any change of speed snaps; measured at lambda = 10,
+/// W = 0.1.
 pub fn solve(params: &Params, mesh: Mesh) -> Solution {
+    let mut pre = Preconditioner::default();
+    let mut s = solve_along(params, mesh, true, &mut pre);
+    if !s.converged {
+        let first = s.iterations;
+        s = solve_along(params, mesh, false, &mut pre);
+        s.iterations += first;
+    }
+    s.factorizations = pre.factorizations;
+    s
+}
+
+fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Preconditioner) -> Solution {
     let lam0 = params.lambda.min(LAMBDA_START);
     let at = |lambda: f64, v: f64| Params { lambda, ..*params }.with_v(v);
     let op0 = Operator::new(mesh, lam0, params.k, 0.0);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
-    let mut pre = Preconditioner::default();
-    let first = newton(&op0, &at(lam0, 0.0), h0, d0, TOLERANCE, 100, &mut pre);
+    let first = newton(&op0, &at(lam0, 0.0), h0, d0, TOLERANCE, 100, pre);
     let mut iterations = first.iterations;
-    if !first.converged {
-        return first;
-    }
-    let (mut sol, it) = continue_geometric(lam0, params.lambda, 1.5, first, |lambda, warm| {
-        let op = Operator::new(mesh, lambda, params.k, 0.0);
-        newton(&op, &at(lambda, 0.0), warm.h.clone(), warm.delta, TOLERANCE, 40, &mut pre)
-    });
-    iterations += it;
+    let mut sol = first;
     let v_target = params.v();
-    if sol.converged && v_target > 0.0 {
-        let v_start = 1e-3 * mesh.a();
-        let (s, it) = if v_target <= v_start {
-            let op = Operator::new(mesh, params.lambda, params.k, v_target);
-            let s = newton(&op, params, sol.h.clone(), sol.delta, TOLERANCE, 40, &mut pre);
-            let it = s.iterations;
-            (s, it)
+    let stages: [bool; 2] = if speed_first { [true, false] } else { [false, true] };
+    for speed in stages {
+        if !sol.converged {
+            break;
+        }
+        let (s, it) = if speed {
+            let lambda = sol.params.lambda;
+            let v_start = 1e-3 * mesh.a();
+            if v_target <= v_start {
+                let op = Operator::new(mesh, lambda, params.k, v_target);
+                let s = newton(&op, &at(lambda, v_target), sol.h.clone(), sol.delta, TOLERANCE, 40, pre);
+                let it = s.iterations;
+                (s, it)
+            } else {
+                continue_geometric(v_start, v_target, 4.0, sol, |v, h, delta| {
+                    let op = Operator::new(mesh, lambda, params.k, v);
+                    newton(&op, &at(lambda, v), h.to_vec(), delta, TOLERANCE, 40, pre)
+                })
+            }
         } else {
-            continue_geometric(v_start, v_target, 4.0, sol, |v, warm| {
-                let op = Operator::new(mesh, params.lambda, params.k, v);
-                newton(&op, &params.with_v(v), warm.h.clone(), warm.delta, TOLERANCE, 40, &mut pre)
+            let v = sol.params.v();
+            continue_geometric(lam0, params.lambda, 1.5, sol, |lambda, h, delta| {
+                let op = Operator::new(mesh, lambda, params.k, v);
+                newton(&op, &at(lambda, v), h.to_vec(), delta, TOLERANCE, 40, pre)
             })
         };
         sol = s;
@@ -480,7 +605,6 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     }
     sol.params = *params;
     sol.iterations = iterations;
-    sol.factorizations = pre.factorizations;
     sol
 }
 
@@ -504,20 +628,59 @@ fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
     }
 }
 
-/// Solves on `mesh`, then doubles the number of elements (same domain) until the
-/// Richardson estimate is at most `rel_tol` |mu*| or the next mesh would exceed `n_max`.
-/// Each refinement reuses the previous fine solution as the coarse one.
+/// The solution on a finer `mesh` of the same domain, from Newton started at the linear
+/// interpolation of `coarse` (mesh sequencing: the continuation path is walked on the
+/// coarse mesh only); if that fails, by the full continuation on the fine mesh.
+pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
+    let params = coarse.params;
+    let xs = &coarse.x;
+    let m = xs.len();
+    let h: Vec<f64> = (0..mesh.n)
+        .map(|i| {
+            let x = mesh.x(i);
+            let j = xs.partition_point(|&xc| xc < x).clamp(1, m - 1);
+            let t = ((x - xs[j - 1]) / (xs[j] - xs[j - 1])).clamp(0.0, 1.0);
+            coarse.h[j - 1] + t * (coarse.h[j] - coarse.h[j - 1])
+        })
+        .collect();
+    let op = Operator::new(mesh, params.lambda, params.k, params.v());
+    let mut pre = Preconditioner::default();
+    let s = newton(&op, &params, h, coarse.delta, TOLERANCE, 40, &mut pre);
+    if s.converged {
+        s
+    } else {
+        let mut full = solve(&params, mesh);
+        full.iterations += s.iterations;
+        full
+    }
+}
+
+/// Solves on `mesh` (by continuation on half its elements, then `refine`), then doubles
+/// the number of elements (same domain) until the Richardson estimate is at most
+/// `rel_tol` |mu*| or the next mesh would exceed `n_max`. Each refinement starts from
+/// the previous solution and reuses it as the coarse one. `iterations` and
+/// `factorizations` of the result count the whole path.
 pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, f64) {
     let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
-    let mut fine = solve(params, mesh);
+    let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
+    let mut next = |from: &Solution, n: usize| {
+        let s = if from.converged { refine(from, Mesh { n, ..mesh }) } else { solve(params, Mesh { n, ..mesh }) };
+        iterations += s.iterations;
+        factorizations += s.factorizations;
+        let mut s = s;
+        s.iterations = iterations;
+        s.factorizations = factorizations;
+        s
+    };
+    let mut fine = next(&coarse, mesh.n);
     loop {
         let estimate = richardson(&fine, &coarse);
         if estimate <= rel_tol * fine.friction().mu_star.abs() || 2 * fine.mesh.n > n_max {
             return (fine, estimate);
         }
         let n = 2 * fine.mesh.n;
-        coarse = fine;
-        fine = solve(params, Mesh { n, ..mesh });
+        let finer = next(&fine, n);
+        coarse = std::mem::replace(&mut fine, finer);
     }
 }
 

@@ -4,3 +4,4 @@ pub mod fit;
 pub mod gmres;
 pub mod quad;
 pub mod roots;
+pub mod toeplitz;

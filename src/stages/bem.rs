@@ -21,16 +21,22 @@ pub struct BemParams {
     pub k: f64,
     /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18), >= 0 (sweepable).
     pub V0: f64,
-    /// Number of elements; default: chosen from lambda and W (`bem::solver::default_mesh`).
+    /// A fixed number of elements (the error is then estimated against n/2); default: the
+    /// mesh is chosen from `rel_tol`.
     #[serde(default)]
     pub n: Option<usize>,
-    /// Half-length of the domain in units of beta; default: chosen from lambda and W.
+    /// Half-length of the domain in units of beta; default: chosen from lambda, W and rel_tol
+    /// (`bem::solver::domain_half_length`).
     #[serde(default)]
     pub half_length: Option<f64>,
-    /// Requested relative accuracy of mu*: the number of elements is doubled (up to 6000)
-    /// until the Richardson error estimate meets it. Default: one mesh, estimate reported.
+    /// Requested relative accuracy of mu* (default 1e-3): starting from
+    /// `bem::solver::starting_mesh`, the number of elements is doubled until the Richardson
+    /// error estimate meets it, up to `n_max`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rel_tol: Option<f64>,
+    /// The largest mesh of the refinement (default 16000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n_max: Option<usize>,
 }
 
 impl BemParams {
@@ -38,9 +44,28 @@ impl BemParams {
         Params { lambda: self.lambda, w: self.W, k: self.k, v0: self.V0 }
     }
 
+    fn rel_tol(&self) -> f64 {
+        self.rel_tol.unwrap_or(solver::DEFAULT_REL_TOL)
+    }
+
+    /// The mesh of a fixed-n solve, or the first mesh of a solve to tolerance.
     fn mesh(&self) -> Mesh {
-        let d = solver::default_mesh(&self.physics());
-        Mesh { n: self.n.unwrap_or(d.n), half_length: self.half_length.unwrap_or(d.half_length) }
+        let p = self.physics();
+        let start = solver::starting_mesh(&p, self.rel_tol());
+        let half_length = self.half_length.unwrap_or(start.half_length);
+        let n = self.n.unwrap_or_else(|| (start.n as f64 * half_length / start.half_length).ceil() as usize);
+        Mesh { n, half_length }
+    }
+
+    /// Solves the point at `physics` (this point's mesh rules) with its error estimate.
+    fn solve_at(&self, physics: &Params) -> (Solution, f64) {
+        let mesh = self.mesh();
+        match self.n {
+            Some(_) => solver::solve_with_estimate(physics, mesh),
+            None => {
+                solver::solve_to_tolerance(physics, mesh, self.rel_tol(), self.n_max.unwrap_or(solver::DEFAULT_N_MAX))
+            }
+        }
     }
 
     fn validate(&self) -> Vec<FieldError> {
@@ -51,9 +76,11 @@ impl BemParams {
         if !(self.V0 >= 0.0 && self.V0.is_finite()) {
             e.push(FieldError::new("V0", format!("must be zero or positive, got {}", self.V0)));
         }
-        if let Some(n) = self.n {
-            if !(8..=6000).contains(&n) {
-                e.push(FieldError::new("n", format!("must lie in 8..=6000 (dense LU), got {n}")));
+        for (field, value) in [("n", self.n), ("n_max", self.n_max)] {
+            if let Some(n) = value {
+                if !(16..=32_000).contains(&n) {
+                    e.push(FieldError::new(field, format!("must lie in 16..=32000, got {n}")));
+                }
             }
         }
         if let Some(l) = self.half_length {
@@ -95,7 +122,7 @@ pub struct BemSweep;
 
 impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
     type Params = BemParams;
@@ -106,10 +133,7 @@ impl Kind for BemSweep {
 
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (s, estimate) = match p.rel_tol {
-            Some(tol) => solver::solve_to_tolerance(&p.physics(), p.mesh(), tol, 6000),
-            None => solver::solve_with_estimate(&p.physics(), p.mesh()),
-        };
+        let (s, estimate) = p.solve_at(&p.physics());
         let f = s.friction();
         let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
         let (p_max, p_min) = extremes(&s);
@@ -140,7 +164,7 @@ pub struct BemProfile;
 
 impl Kind for BemProfile {
     const NAME: &'static str = "bem.profile";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
@@ -151,7 +175,7 @@ impl Kind for BemProfile {
     }
 
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
-        let s = solver::solve(&p.physics(), p.mesh());
+        let (s, _) = p.solve_at(&p.physics());
         if !s.converged {
             anyhow::bail!("the point did not converge (residual {:e} after {} iterations)", s.residual, s.iterations);
         }
@@ -198,10 +222,15 @@ pub struct MaximaParams {
     /// Golden-section tolerance in log10 V0.
     #[serde(default = "default_log_tol")]
     pub log_tol: f64,
+    /// Mesh rules of each solve, as in `bem.sweep`.
     #[serde(default)]
     pub n: Option<usize>,
     #[serde(default)]
     pub half_length: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rel_tol: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n_max: Option<usize>,
 }
 
 impl MaximaParams {
@@ -213,7 +242,8 @@ impl MaximaParams {
             V0: 1.0,
             n: self.n,
             half_length: self.half_length,
-            rel_tol: None,
+            rel_tol: self.rel_tol,
+            n_max: self.n_max,
         }
     }
 }
@@ -223,7 +253,7 @@ pub struct BemMaxima;
 
 impl Kind for BemMaxima {
     const NAME: &'static str = "bem.maxima";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
@@ -245,11 +275,11 @@ impl Kind for BemMaxima {
         let point = p.point();
         let m = crate::bem::maxima::max_over_speed(
             &point.physics(),
-            point.mesh(),
             p.V0_range[0],
             p.V0_range[1],
             p.grid,
             p.log_tol,
+            |physics| point.solve_at(physics),
         );
         let t = Table::new()
             .with_f64("lambda", vec![p.lambda])
@@ -259,6 +289,7 @@ impl Kind for BemMaxima {
             .with_f64("V0_at_max", vec![m.v0])
             .with_f64("mu_adh", vec![finite(m.friction.mu_adh)])
             .with_f64("mu_comp", vec![finite(m.friction.mu_comp)])
+            .with_f64("error_estimate", vec![m.error_estimate.min(f64::MAX)])
             .with("evaluations", ColumnData::I64(vec![m.evaluations as i64]))
             .with("converged", ColumnData::Bool(vec![m.all_converged]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
