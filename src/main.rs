@@ -1,5 +1,6 @@
 //! The `repro` command line.
 
+use anyhow::Context;
 use clap::{Parser, Subcommand};
 use repro::pipeline::cache::{CacheBusy, LockMode};
 use repro::pipeline::executor::{self, RunOptions, UsageError};
@@ -104,6 +105,14 @@ enum Command {
     Schema,
     /// List the stage kinds with their code versions.
     Kinds,
+    /// Print a published Parquet table (or some of its columns) as text.
+    Show {
+        /// The Parquet file (tables/<stage>.parquet or figures/<figure>.parquet).
+        file: PathBuf,
+        /// Only these columns, comma-separated.
+        #[arg(long, value_delimiter = ',')]
+        columns: Vec<String>,
+    },
 }
 
 fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
@@ -242,6 +251,31 @@ fn main() -> ExitCode {
         }
         Command::Schema => {
             println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Show { file, columns } => {
+            let df = repro::pipeline::table::read_parquet(&file)?;
+            let names: Vec<String> = if columns.is_empty() {
+                df.get_column_names().iter().map(|c| c.to_string()).collect()
+            } else {
+                columns
+            };
+            let cols = names
+                .iter()
+                .map(|c| df.column(c).with_context(|| format!("{}: no column `{c}`", file.display())))
+                .collect::<anyhow::Result<Vec<_>>>()?;
+            let cells: Vec<Vec<String>> = (0..df.height())
+                .map(|i| cols.iter().map(|c| c.get(i).map(|v| v.to_string()).unwrap_or_default()).collect())
+                .collect();
+            let widths: Vec<usize> = (0..names.len())
+                .map(|j| cells.iter().map(|r| r[j].chars().count()).chain([names[j].len()]).max().unwrap_or(0))
+                .collect();
+            let line =
+                |r: &[String]| r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ");
+            println!("{}", line(&names));
+            for r in &cells {
+                println!("{}", line(r));
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Kinds => {

@@ -1,5 +1,6 @@
-//! The default pipeline end to end: the five figures with their tables, a rerun that
-//! computes nothing, and the theory values read back from the published Parquet tables.
+//! The default pipeline end to end (the closed-form figures and two Chapter 4 ones): the
+//! figures with their tables, a rerun that computes nothing, and the values read back
+//! from the published Parquet tables.
 
 mod common;
 use common::Scratch;
@@ -20,14 +21,21 @@ fn row_where(df: &DataFrame, key: &str, value: f64, col: &str) -> f64 {
 }
 
 #[test]
-fn the_thesis_pipeline_makes_five_figures_and_the_theory_values_hold() {
+fn the_thesis_pipeline_makes_its_figures_and_the_values_hold() {
     let s = Scratch::new("thesis");
     let yaml = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/thesis.yaml")).unwrap();
     s.write("pipelines/thesis.yaml", &yaml);
-    let (code, err, r) = s.run("pipelines/thesis.yaml", &[]);
+    // The closed-form figures and two Chapter 4 ones (the full Chapter 4 set takes about a
+    // minute in a release build: `make figures`).
+    let figures = ["fig2_4", "fig2_5", "fig7_3", "fig7_4", "fig5_4", "fig7_3_bem", "fig4_2b", "fig4_4"];
+    let tables = ["maugis_pulloff", "bem_max_large_load", "fit_pb_linear", "fit_pb_sqrt"];
+    let targets: Vec<String> =
+        figures.iter().chain(&tables).flat_map(|f| ["--target".to_string(), f.to_string()]).collect();
+    let targets: Vec<&str> = targets.iter().map(|s| s.as_str()).collect();
+    let (code, err, r) = s.run("pipelines/thesis.yaml", &targets);
     assert_eq!(code, 0, "{err}");
     assert_eq!(r.count(None, "failed"), 0);
-    for fig in ["fig2_4", "fig2_5", "fig7_3", "fig7_4", "fig5_4", "fig7_3_bem"] {
+    for fig in figures {
         let svg = String::from_utf8(s.read(&format!("figures/{fig}.svg"))).unwrap();
         assert!(svg.starts_with("<svg") && (svg.contains("<polyline") || svg.contains("<circle")), "{fig}");
         let df = repro::pipeline::table::read_parquet(&s.path(&format!("figures/{fig}.parquet"))).unwrap();
@@ -37,7 +45,7 @@ fn the_thesis_pipeline_makes_five_figures_and_the_theory_values_hold() {
         assert!(df.height() > 20, "{fig}: {} rows", df.height());
     }
     // A second run computes nothing.
-    let (_, _, again) = s.run("pipelines/thesis.yaml", &[]);
+    let (_, _, again) = s.run("pipelines/thesis.yaml", &targets);
     assert_eq!(again.count(None, "computed"), 0);
     assert_eq!(again.count(None, "cached"), r.tasks().len());
 
@@ -100,4 +108,18 @@ fn the_thesis_pipeline_makes_five_figures_and_the_theory_values_hold() {
     assert!((s - 0.5).abs() < 0.02 && e < 0.01, "{s} +- {e}");
     // Provenance: the code version on every row.
     assert!(strings(&pb, "code_version").iter().all(|c| c == "theory.persson_brener@v1"));
+
+    // Fig. 4.4 (Section 4.3.3): the friction integrand integrates to mu*; for lambda > 1 the
+    // trailing edge (right) contributes most, for lambda = 0.1 the leading edge (left).
+    let prof = table("profiles_integrand");
+    let (lam, x, f) = (column(&prof, "lambda"), column(&prof, "X"), column(&prof, "mu_integrand"));
+    let curve = |l: f64| -> Vec<(f64, f64)> { (0..x.len()).filter(|&i| lam[i] == l).map(|i| (x[i], f[i])).collect() };
+    let peak = |c: &[(f64, f64)]| c.iter().copied().fold((0.0, f64::MIN), |m, q| if q.1 > m.1 { q } else { m });
+    let (x3, f3) = peak(&curve(3.0));
+    assert!(x3 > 1.5 && f3 > 100.0, "lambda = 3: peak {f3} at X = {x3}");
+    let (x01, _) = peak(&curve(0.1));
+    assert!(x01 < 0.0, "lambda = 0.1: peak at X = {x01}");
+    let integral = |c: &[(f64, f64)]| c.iter().map(|q| q.1).sum::<f64>() * (c[1].0 - c[0].0);
+    // mu* at lambda = 3, W = 0.1, k = 0.1, V0 = 4: 99.34 (`repro point bem.sweep`).
+    assert!((integral(&curve(3.0)) - 99.34).abs() < 0.1, "{}", integral(&curve(3.0)));
 }

@@ -159,7 +159,9 @@ impl Kind for BemSweep {
     }
 }
 
-/// The fields of one point: P(X), U(X), H(X) and the friction integrand P dU/dX.
+/// The fields of one point: P(X), U(X), H(X), the friction integrand P dU/dX and its
+/// multiple whose integral is mu* (Eq. 4.16), the deformed surface Z = -U and the
+/// indenter Z = X^2/2 - Delta (Z towards the indenter; the gap is their difference).
 pub struct BemProfile;
 
 impl Kind for BemProfile {
@@ -181,6 +183,8 @@ impl Kind for BemProfile {
         }
         let two_a = 2.0 * s.mesh.a();
         let integrand: Vec<f64> = (0..s.p.len()).map(|j| s.p[j] * (s.u_edges[j + 1] - s.u_edges[j]) / two_a).collect();
+        // Eq. 4.16: mu* = (sqrt(pi)/2) lambda W^(-3/2) Int P dU/dX dX (ERRATA 3).
+        let pre = std::f64::consts::PI.sqrt() / 2.0 * p.lambda / p.W.abs().powf(1.5);
         let n = s.x.len();
         let t = p
             .parameter_columns(n)
@@ -188,7 +192,10 @@ impl Kind for BemProfile {
             .with_f64("P", s.p.clone())
             .with_f64("U", s.u.clone())
             .with_f64("H", s.h.clone())
-            .with_f64("P_dU_dX", integrand);
+            .with_f64("P_dU_dX", integrand.clone())
+            .with_f64("mu_integrand", integrand.iter().map(|v| pre * v).collect())
+            .with_f64("surface", s.u.iter().map(|u| -u).collect())
+            .with_f64("indenter", s.x.iter().map(|x| 0.5 * x * x - s.delta).collect());
         Ok(t.into())
     }
 }

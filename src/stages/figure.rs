@@ -18,6 +18,8 @@ pub enum Style {
     Line,
     Dashed,
     Points,
+    /// A line through markers at the data points.
+    LinePoints,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -77,11 +79,29 @@ fn dashed() -> Style {
     Style::Dashed
 }
 
+/// The power laws y = prefactor x^slope of a `fit.powerlaw` stage, one curve per row
+/// (group), drawn over the fitted range or over `x_range`.
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FitLayer {
+    /// The fit stage (must be in `needs`).
+    pub from: String,
+    /// Legend label; `{slope}` and `{slope_std_error}` are replaced by the fitted values
+    /// (two decimals), other `{column}`s by the row's value.
+    pub label: String,
+    /// Draw over this x range instead of the fitted one.
+    #[serde(default)]
+    pub x_range: Option<[f64; 2]>,
+    #[serde(default = "dashed")]
+    pub style: Style,
+}
+
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Layer {
     Data(DataLayer),
     Guide(GuideLayer),
+    Fit(FitLayer),
 }
 
 fn default_width() -> u32 {
@@ -181,6 +201,30 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
     Series { label: g.label.clone(), style: g.style, x_name: "guide".into(), y_name: "guide".into(), points }
 }
 
+fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Series>> {
+    let t = inputs.table(&layer.from)?;
+    let col = |name: &str| t.f64_column(name).with_context(|| format!("fit layer from `{}`", layer.from));
+    let (slope, err, pre, lo, hi) =
+        (col("slope")?, col("slope_std_error")?, col("prefactor")?, col("x_min")?, col("x_max")?);
+    Ok((0..t.n_rows())
+        .map(|row| {
+            let mut label = layer
+                .label
+                .replace("{slope}", &format!("{:.2}", slope[row]))
+                .replace("{slope_std_error}", &format!("{:.2}", err[row]));
+            for (name, c) in &t.columns {
+                label = label.replace(&format!("{{{name}}}"), &c.display_at(row));
+            }
+            let [x_from, x_to] = layer.x_range.unwrap_or([lo[row], hi[row]]);
+            let guide =
+                GuideLayer { slope: slope[row], through: [1.0, pre[row]], x_from, x_to, label, style: layer.style };
+            let mut s = guide_series(&guide, log_x);
+            (s.x_name, s.y_name) = ("fit".into(), "fit".into());
+            s
+        })
+        .collect())
+}
+
 const PALETTE: [RGBColor; 11] = [
     RGBColor(0, 0, 0),
     RGBColor(31, 119, 180),
@@ -255,8 +299,9 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
     let tx = |x: f64| if p.log_x { x.log10() } else { x };
     let ty = |y: f64| if p.log_y { y.log10() } else { y };
     let xs = series.iter().flat_map(|s| s.points.iter().map(|q| tx(q.0)));
-    let ys = series.iter().flat_map(|s| s.points.iter().map(|q| ty(q.1)));
     let (x0, x1) = extent(p.x_range, p.log_x, xs)?;
+    // The automatic y range covers the points inside the x range only.
+    let ys = series.iter().flat_map(|s| s.points.iter().filter(|q| tx(q.0) >= x0 && tx(q.0) <= x1).map(|q| ty(q.1)));
     let (y0, y1) = extent(p.y_range, p.log_y, ys)?;
     let mut svg = String::new();
     {
@@ -313,12 +358,28 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                     Style::Points => {
                         chart.draw_series(run.into_iter().map(|q| Circle::new(q, 3, color.filled()))).map_err(err)?
                     }
+                    Style::LinePoints => {
+                        chart.draw_series(run.iter().map(|&q| Circle::new(q, 3, color.filled()))).map_err(err)?;
+                        chart.draw_series(LineSeries::new(run, style)).map_err(err)?
+                    }
                 };
-                if ri > 0 {
+                if ri > 0 || s.label.is_empty() {
                     continue;
                 }
                 if s.style == Style::Points {
                     anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
+                } else if s.style == Style::LinePoints {
+                    anno.label(s.label.clone()).legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (22, 0)], legend_style)
+                            + Circle::new((11, 0), 3, color.filled())
+                    });
+                } else if s.style == Style::Dashed {
+                    anno.label(s.label.clone()).legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (8, 0)], legend_style)
+                            + PathElement::new(vec![(13, 0), (22, 0)], legend_style)
+                    });
                 } else {
                     anno.label(s.label.clone())
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
@@ -348,7 +409,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 4;
+    const VERSION: u32 = 5;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
@@ -371,6 +432,11 @@ impl Kind for Figure {
             }
         }
         for (i, l) in p.layers.iter().enumerate() {
+            if let Layer::Fit(FitLayer { x_range: Some([a, b]), .. }) = l {
+                if !(*a > 0.0 && b > a) {
+                    e.push(FieldError::new(&format!("layers[{i}].fit.x_range"), "needs 0 < from < to"));
+                }
+            }
             if let Layer::Guide(g) = l {
                 if !(g.through[0] > 0.0 && g.x_from > 0.0 && g.x_to > g.x_from) {
                     e.push(FieldError::new(
@@ -392,6 +458,7 @@ impl Kind for Figure {
             .enumerate()
             .filter_map(|(i, l)| match l {
                 Layer::Data(d) => Some((format!("layers[{i}].data.from"), d.from.clone())),
+                Layer::Fit(f) => Some((format!("layers[{i}].fit.from"), f.from.clone())),
                 Layer::Guide(_) => None,
             })
             .collect()
@@ -403,6 +470,7 @@ impl Kind for Figure {
             match l {
                 Layer::Data(d) => series.extend(data_series(d, inputs)?),
                 Layer::Guide(g) => series.push(guide_series(g, p.log_x)),
+                Layer::Fit(f) => series.extend(fit_series(f, inputs, p.log_x)?),
             }
         }
         // On log axes, points at or below zero cannot be drawn: leave them out of both the
