@@ -729,6 +729,33 @@ mod tests {
     }
 
     #[test]
+    fn the_active_set_preconditioner_is_exact_without_dropping_and_close_with_it() {
+        // A converged state at lambda = 3, W = 0.1: the far-field columns are tiny.
+        let params = Params { lambda: 3.0, w: 0.1, k: 0.1, v0: 1.0 };
+        let mesh = Mesh { n: 600, half_length: 6.0 };
+        let s = solve(&params, mesh);
+        assert!(s.converged);
+        let op = Operator::new(mesh, params.lambda, params.k, params.v());
+        let sys = System::new(&op, &params);
+        let ev = sys.eval(&s.h, s.delta);
+        let rhs: Vec<f64> = (0..=mesh.n).map(|i| ((i as f64) * 0.37).sin()).collect();
+        let resid = |d: &[f64]| {
+            let jd = sys.apply_jacobian(&ev.dp, d);
+            jd.iter().zip(&rhs).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
+        };
+        let exact = ActiveLu::new(&sys, &ev.dp, 0.0);
+        assert_eq!(exact.idx.len(), mesh.n);
+        assert!(resid(&exact.solve(&rhs)) < 1e-10);
+        let dropped = ActiveLu::new(&sys, &ev.dp, DROP);
+        assert!(dropped.idx.len() < mesh.n * 3 / 4, "active {} of {}", dropped.idx.len(), mesh.n);
+        let r = resid(&dropped.solve(&rhs));
+        assert!(r > 1e-12 && r < 1.0, "an approximate inverse: residual {r} (measured 0.62)");
+        let g = gmres(|v| sys.apply_jacobian(&ev.dp, v), |v| dropped.solve(v), &rhs, 1e-10, GMRES_ITERATIONS);
+        assert!(g.converged && g.iterations <= 12, "GMRES: {} iterations", g.iterations);
+        assert!(resid(&g.x) < 1e-9);
+    }
+
+    #[test]
     fn large_load_friction_approaches_persson_hunter() {
         // Adhesion negligible at W = 100 (the thesis: the adhesionless limit is reached
         // near W = 100). Persson's approximation assumes a Hertzian pressure; the BEM
