@@ -9,9 +9,10 @@
 //! Discretisation: n elements of width 2A on [-L, L], uniform pressure on each (Eq. 4.12:
 //! U = (2 lambda/pi) G P, G Toeplitz). Unknowns: the gaps H_i and the approach Delta.
 //! Equations: H_i + Delta - X_i^2/2 - U_i(P(H)) = 0 (Eq. 4.7) and lambda Int P dX = W.
-//! Newton with a dense LU (faer) and a backtracking line search that keeps every
-//! z = 1 + alpha lambda H positive. Unconverged points are returned as such, with their
-//! residual and iteration count.
+//! Newton-Krylov: products with G by FFT (`numerics::toeplitz`), GMRES preconditioned by a
+//! dense LU (faer) of the near-contact block (`ActiveLu`), and a backtracking line search
+//! that keeps every z = 1 + alpha lambda H positive. Unconverged points are returned as
+//! such, with their residual and iteration count.
 //!
 //! Friction (Eq. 4.16 with the prefactor of ERRATA 3, sign for sliding towards -X):
 //!   mu* = (sqrt(pi)/2) (lambda / W^(3/2)) Int P dU/dX dX,
@@ -108,8 +109,10 @@ fn contact_scale(p: &Params) -> f64 {
 }
 
 /// The first mesh of a solve to tolerance: the domain of `domain_half_length`, elements of
-/// the smaller of 1/40 of the contact half-width and 1/8 of the cohesive zone, whose
-/// length is about pi/(8 lambda^2) (Maugis-Dugdale in 2D); 64..=8000 elements.
+/// the smaller of 1/40 of the contact half-width and 1/2 of the cohesive zone, whose
+/// length is about pi/(8 lambda^2) (Maugis-Dugdale in 2D); 64..=8000 elements. Coarser
+/// than the answer needs at large lambda is fine: the continuation runs on it, the
+/// refinement to rel_tol follows (at lambda = 10 the speed-first path converges from it).
 pub fn starting_mesh(p: &Params, rel_tol: f64) -> Mesh {
     let half_length = domain_half_length(p, rel_tol);
     let zone = PI / (8.0 * p.lambda * p.lambda);
@@ -651,6 +654,7 @@ pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
     } else {
         let mut full = solve(&params, mesh);
         full.iterations += s.iterations;
+        full.factorizations += s.factorizations;
         full
     }
 }
@@ -664,10 +668,9 @@ pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usiz
     let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
     let mut next = |from: &Solution, n: usize| {
-        let s = if from.converged { refine(from, Mesh { n, ..mesh }) } else { solve(params, Mesh { n, ..mesh }) };
+        let mut s = if from.converged { refine(from, Mesh { n, ..mesh }) } else { solve(params, Mesh { n, ..mesh }) };
         iterations += s.iterations;
         factorizations += s.factorizations;
-        let mut s = s;
         s.iterations = iterations;
         s.factorizations = factorizations;
         s
