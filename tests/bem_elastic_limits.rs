@@ -6,7 +6,9 @@
 //! checked here (and the reason the high-speed limit is far from JKR at moderate lambda:
 //! lambda' = 0.65 for lambda = 3, k = 0.1).
 
-use repro::bem::solver::{jkr_half_width, solve, Mesh, Params, Solution};
+use repro::bem::branch::pull_off;
+use repro::bem::solver::{jkr_half_width, jkr_pull_off, solve, starting_mesh, Mesh, Params, Solution};
+use repro::theory::line_contact::{lj_rigid_pull_off_coefficient, maugis_dugdale_line_pull_off};
 
 fn solved(lambda: f64, w: f64, k: f64, v0: f64, mesh: Mesh) -> Solution {
     let s = solve(&Params { lambda, w, k, v0 }, mesh);
@@ -39,4 +41,90 @@ fn high_speed_is_the_instantaneous_half_plane() {
     assert!(dp < 5e-4 * pmax, "max |dP| {dp} of {pmax}");
     // And at this speed the friction has vanished again.
     assert!(fast.friction().mu_star.abs() < 1e-3, "{:?}", fast.friction());
+}
+
+// ---- Pull-off, walked under approach control (`bem::branch`). ----
+
+fn pull_off_at(lambda: f64, k: f64, v0: f64, n: Option<usize>) -> f64 {
+    let p = Params { lambda, w: 0.1, k, v0 };
+    let mut mesh = starting_mesh(&p, 1e-3);
+    if let Some(n) = n {
+        mesh.n = n;
+    }
+    let start = solved(lambda, 0.1, k, v0, mesh);
+    let po = pull_off(&start, 1e-3);
+    assert!(po.converged, "lambda {lambda} k {k} V0 {v0}: the branch ended at W = {}", po.load);
+    // The state at pull-off is an equilibrium carrying that load.
+    assert!(po.solution.converged && po.solution.residual < 1e-9);
+    po.load
+}
+
+#[test]
+fn pull_off_tends_to_the_jkr_line_contact_as_lambda_grows() {
+    // Measured at V0 = 1e-6: -1.6353 (lambda 1), -1.7275 (lambda 3), -1.7359 (5), -1.7421 (10);
+    // JKR -1.74367. Maugis-Dugdale line contact: -1.7245, -1.7433.
+    let jkr = jkr_pull_off();
+    let (w1, w3) = (pull_off_at(1.0, 0.1, 1e-6, None), pull_off_at(3.0, 0.1, 1e-6, None));
+    assert!((w3 / jkr - 1.0).abs() < 0.015, "lambda 3: {w3} vs JKR {jkr}");
+    assert!((w3 - jkr).abs() < 0.25 * (w1 - jkr).abs(), "lambda 1: {w1}, lambda 3: {w3}");
+    let md3 = maugis_dugdale_line_pull_off(3.0).unwrap().0;
+    assert!((w3 / md3 - 1.0).abs() < 0.01, "{w3} vs Maugis-Dugdale {md3}");
+    // Converged in the mesh: n = 579 (default), 1158 give -1.72745, -1.72712.
+    let fine = pull_off_at(3.0, 0.1, 1e-6, Some(1158));
+    assert!((fine / w3 - 1.0).abs() < 5e-4, "{fine} vs {w3}");
+}
+
+#[test]
+fn pull_off_at_small_lambda_is_the_rigid_line_contact() {
+    // A rigid cylinder with the Lennard-Jones law pulls off at -kappa sqrt(lambda), kappa =
+    // 2.434 (`theory::line_contact`). Measured ratios: 0.9828 (lambda 0.1), 0.9969 (0.03),
+    // 0.9991 (0.01). The Maugis-Dugdale line contact has the same limit with the Dugdale
+    // law's 2 sqrt 2: at lambda = 0.1 the BEM / Maugis-Dugdale ratio equals the ratio of the
+    // two laws' rigid coefficients to 0.2%.
+    let kappa = lj_rigid_pull_off_coefficient();
+    let ratio = |lambda: f64| pull_off_at(lambda, 0.1, 1e-6, None) / (-kappa * lambda.sqrt());
+    let (r01, r001) = (ratio(0.1), ratio(0.01));
+    assert!(r01 < 1.0 && (r01 - 0.983).abs() < 0.005, "lambda 0.1: {r01}");
+    assert!((r001 - 1.0).abs() < 0.003, "lambda 0.01: {r001}");
+    let md = maugis_dugdale_line_pull_off(0.1).unwrap().0;
+    let shape = kappa / (2.0 * 2f64.sqrt());
+    let bem = pull_off_at(0.1, 0.1, 1e-6, None);
+    assert!((bem / md / shape - 1.0).abs() < 0.01, "{bem} vs Maugis-Dugdale {md} x {shape}");
+}
+
+#[test]
+fn pull_off_at_high_speed_is_that_of_the_instantaneous_half_plane() {
+    // At V0 = 1e6 the substrate is elastic with modulus E0/k: the relaxed problem at
+    // lambda k^(2/3), with loads scaled by k^(-1/3). Measured: -2.1778, and -2.1969 for the
+    // instantaneous JKR line contact (lambda k^(2/3) = 3.15).
+    let (lambda, k): (f64, f64) = (5.0, 0.5);
+    let fast = pull_off_at(lambda, k, 1e6, None);
+    let relaxed = pull_off_at(lambda * k.powf(2.0 / 3.0), k, 1e-6, None) / k.cbrt();
+    assert!((fast / relaxed - 1.0).abs() < 2e-3, "{fast} vs {relaxed}");
+    let jkr_inst = jkr_pull_off() / k.cbrt();
+    assert!((fast / jkr_inst - 1.0).abs() < 0.015, "{fast} vs {jkr_inst}");
+    // Viscoelasticity in between raises the pull-off (measured -2.0825 at V0 = 1, lambda 3, k 0.1).
+    let mid = pull_off_at(3.0, 0.1, 1.0, None);
+    assert!(mid < 1.15 * pull_off_at(3.0, 0.1, 1e-6, None), "{mid}");
+}
+
+#[test]
+fn tensile_loads_are_solved_on_the_stable_branch() {
+    let mesh = |w: f64| starting_mesh(&Params { lambda: 3.0, w, k: 0.001, v0: 1.0 }, 1e-3);
+    let up = solved(3.0, 0.1, 0.001, 1.0, mesh(0.1));
+    let down = solved(3.0, -0.1, 0.001, 1.0, mesh(-0.1));
+    assert!((down.load() + 0.1).abs() < 1e-8);
+    // Same speed V = V0 a0(|W|): the same physical speed for +W and -W.
+    assert!((up.params.v() - down.params.v()).abs() < 1e-12);
+    // Short-range adhesion: friction nearly independent of the load's sign (measured mu* =
+    // 83.77 at +0.1 and 81.79 at -0.1, k = 0.001), as Barquins observed (thesis Ch. 5).
+    let (fu, fd) = (up.friction().mu_star, down.friction().mu_star);
+    assert!((fd / fu - 1.0).abs() < 0.05, "{fu} vs {fd}");
+    // The stable state: a wider contact than at pull-off (W = -2.08 here, width 0.68).
+    let po = pull_off(&up, 1e-3);
+    assert!(down.adhered_half_width().unwrap() > po.solution.adhered_half_width().unwrap() * 1.1);
+    // Beyond the pull-off: reported as not converged, with finite fields.
+    let beyond = solve(&Params { lambda: 1.0, w: -2.5, k: 0.1, v0: 1.0 }, Mesh { n: 200, half_length: 5.4 });
+    assert!(!beyond.converged && beyond.residual.is_finite() && beyond.residual > 0.1, "{}", beyond.residual);
+    assert!(beyond.friction().mu_star.is_finite());
 }

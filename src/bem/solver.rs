@@ -54,6 +54,17 @@ impl Params {
     pub fn with_v(&self, v: f64) -> Params {
         Params { v0: v / self.a0(), ..*self }
     }
+    /// The same speed V at another load (V0 is relative to the Hertz width of |W|; at
+    /// W = 0 it is reported as infinite).
+    pub fn with_load(&self, w: f64) -> Params {
+        let v = self.v();
+        let p = Params { w, ..*self };
+        if w == 0.0 {
+            Params { v0: if v == 0.0 { 0.0 } else { f64::INFINITY }, ..p }
+        } else {
+            p.with_v(v)
+        }
+    }
 }
 
 /// Mesh: n elements on [-half_length, half_length].
@@ -195,6 +206,12 @@ impl Solution {
         Some(0.5 * (self.x[last] - self.x[first]) + a)
     }
 
+    /// The approach measured from the domain edges, Delta - (U(X_0) + U(X_n-1))/2: the
+    /// quantity `Control::Approach` imposes.
+    pub fn approach(&self) -> f64 {
+        self.delta - 0.5 * (self.u[0] + self.u[self.u.len() - 1])
+    }
+
     /// lambda Int P dX: the load actually carried (equals W when converged).
     pub fn load(&self) -> f64 {
         self.params.lambda * 2.0 * self.mesh.a() * self.p.iter().sum::<f64>()
@@ -236,12 +253,24 @@ impl Operator {
     }
 }
 
+/// What the last of the n + 1 equations imposes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Control {
+    /// The load: lambda Int P dX = W (the approach Delta is an unknown).
+    Load(f64),
+    /// The approach measured from the domain edges, Delta - (U(X_0) + U(X_n-1))/2 (the
+    /// load follows): the grip of a finite 2D body, whose compliance is positive at every
+    /// speed (Delta alone is not: at high speed the moving kernel adds a constant times
+    /// the load to U, and W(Delta) can turn). Regular through the load-control fold, so the
+    /// branch can be followed to and past the pull-off load.
+    Approach(f64),
+}
+
 /// The discrete equations of one point: residual and Jacobian in the unknowns (H, Delta).
 struct System<'a> {
     op: &'a Operator,
     x: Vec<f64>,
-    /// W / lambda: the required Int P dX.
-    target: f64,
+    control: Control,
     /// The load equation is divided by the domain length so that it reads in H-like units.
     load_scale: f64,
 }
@@ -256,9 +285,19 @@ struct Evaluation {
 }
 
 impl<'a> System<'a> {
-    fn new(op: &'a Operator, params: &Params) -> Self {
+    fn new(op: &'a Operator, control: Control) -> Self {
         let x = (0..op.mesh.n).map(|i| op.mesh.x(i)).collect();
-        System { op, x, target: params.w / op.lambda, load_scale: 1.0 / (2.0 * op.mesh.half_length) }
+        System { op, x, control, load_scale: 1.0 / (2.0 * op.mesh.half_length) }
+    }
+
+    /// The coefficient of dP_j/dH_j in the last row: the load weight, or minus the mean
+    /// influence of element j on the two edge nodes (approach control).
+    fn edge_row(&self, j: usize) -> f64 {
+        let n = self.op.mesh.n;
+        match self.control {
+            Control::Load(_) => 2.0 * self.op.mesh.a() * self.load_scale,
+            Control::Approach(_) => -0.5 * (self.op.nodes[n - 1 - j] + self.op.nodes[2 * n - 2 - j]),
+        }
     }
 
     fn eval(&self, h: &[f64], delta: f64) -> Evaluation {
@@ -266,7 +305,10 @@ impl<'a> System<'a> {
         let (p, dp): (Vec<f64>, Vec<f64>) = h.iter().map(|&hi| traction::pressure(hi, self.op.lambda)).unzip();
         let u = self.op.displacement(&p);
         let mut r: Vec<f64> = (0..n).map(|i| h[i] + delta - 0.5 * self.x[i] * self.x[i] - u[i]).collect();
-        r.push((2.0 * self.op.mesh.a() * p.iter().sum::<f64>() - self.target) * self.load_scale);
+        r.push(match self.control {
+            Control::Load(w) => (2.0 * self.op.mesh.a() * p.iter().sum::<f64>() - w / self.op.lambda) * self.load_scale,
+            Control::Approach(d) => delta - 0.5 * (u[0] + u[n - 1]) - d,
+        });
         let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let merit = r.iter().map(|v| v * v).sum::<f64>().sqrt();
         Evaluation { p, dp, r, norm, merit }
@@ -278,7 +320,10 @@ impl<'a> System<'a> {
         let dv: Vec<f64> = (0..n).map(|j| dp[j] * v[j]).collect();
         let g = self.op.displacement(&dv);
         let mut out: Vec<f64> = (0..n).map(|i| v[i] - g[i] + v[n]).collect();
-        out.push(2.0 * self.op.mesh.a() * dv.iter().sum::<f64>() * self.load_scale);
+        out.push(match self.control {
+            Control::Load(_) => self.edge_row(0) * dv.iter().sum::<f64>(),
+            Control::Approach(_) => v[n] - 0.5 * (g[0] + g[n - 1]),
+        });
         out
     }
 
@@ -295,7 +340,10 @@ impl<'a> System<'a> {
             jac[(i, n)] = 1.0;
         }
         for j in 0..n {
-            jac[(n, j)] = 2.0 * self.op.mesh.a() * dp[j] * self.load_scale;
+            jac[(n, j)] = self.edge_row(j) * dp[j];
+        }
+        if let Control::Approach(_) = self.control {
+            jac[(n, n)] = 1.0;
         }
         jac
     }
@@ -322,6 +370,7 @@ impl ActiveLu {
     fn new(sys: &System, dp: &[f64], drop: f64) -> ActiveLu {
         let n = sys.op.mesh.n;
         let load_weight = 2.0 * sys.op.mesh.a() * sys.load_scale;
+        let corner = f64::from(matches!(sys.control, Control::Approach(_)));
         let col_norm = sys.op.nodes.iter().map(|c| c.abs()).sum::<f64>() + load_weight;
         let idx: Vec<usize> = (0..n).filter(|&j| dp[j].abs() * col_norm > drop).collect();
         let d: Vec<f64> = idx.iter().map(|&j| dp[j]).collect();
@@ -329,8 +378,8 @@ impl ActiveLu {
         let mat = Mat::<f64>::from_fn(m + 1, m + 1, |a, b| match (a < m, b < m) {
             (true, true) => f64::from(a == b) - sys.op.nodes[idx[a] + n - 1 - idx[b]] * d[b],
             (true, false) => 1.0,
-            (false, true) => load_weight * d[b],
-            (false, false) => 0.0,
+            (false, true) => sys.edge_row(idx[b]) * d[b],
+            (false, false) => corner,
         });
         ActiveLu { n, lu: mat.partial_piv_lu(), idx, d, g: sys.op.nodes_fft.clone() }
     }
@@ -393,18 +442,20 @@ impl Preconditioner {
 }
 
 /// Newton's method from `h0`, `delta0`. Returns the solution (converged or not).
+/// Under approach control the solution's load is the one carried, at the same speed V.
 fn newton(
     op: &Operator,
     params: &Params,
+    control: Control,
     h0: Vec<f64>,
     delta0: f64,
-    tol: f64,
     max_iter: usize,
     pre: &mut Preconditioner,
 ) -> Solution {
+    let tol = TOLERANCE;
     let n = op.mesh.n;
     let lambda = op.lambda;
-    let sys = System::new(op, params);
+    let sys = System::new(op, control);
     let mut h = h0;
     let mut delta = delta0;
     let mut ev = sys.eval(&h, delta);
@@ -445,8 +496,12 @@ fn newton(
     }
     let u = op.displacement(&ev.p);
     let u_edges = op.edge_displacement(&ev.p);
+    let params = match control {
+        Control::Load(_) => *params,
+        Control::Approach(_) => params.with_load(lambda * 2.0 * op.mesh.a() * ev.p.iter().sum::<f64>()),
+    };
     Solution {
-        params: *params,
+        params,
         mesh: op.mesh,
         x: sys.x,
         h,
@@ -556,7 +611,19 @@ const LAMBDA_START: f64 = 0.3;
 /// large lambda the discrete crack front has folds (lattice trapping): raising lambda at
 /// V = 0 can end next to one, where any change of speed snaps; measured at lambda = 10,
 /// W = 0.1.
+///
+/// A tensile load (W < 0) is reached from the same point at load max(|W|, 0.1) by walking
+/// down the branch under approach control (`branch::descend_to_load`), so that the state
+/// is the stable one; beyond the pull-off the result is marked not converged.
 pub fn solve(params: &Params, mesh: Mesh) -> Solution {
+    if params.w < 0.0 {
+        let start = solve(&params.with_load(params.w.abs().max(0.1)), mesh);
+        let mut s = if start.converged { super::branch::descend_to_load(&start, params.w) } else { start.clone() };
+        s.params = *params;
+        s.iterations += start.iterations;
+        s.factorizations += start.factorizations;
+        return s;
+    }
     let mut pre = Preconditioner::default();
     let mut s = solve_along(params, mesh, true, &mut pre);
     if !s.converged {
@@ -573,7 +640,7 @@ fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Precond
     let at = |lambda: f64, v: f64| Params { lambda, ..*params }.with_v(v);
     let op0 = Operator::new(mesh, lam0, params.k, 0.0);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
-    let first = newton(&op0, &at(lam0, 0.0), h0, d0, TOLERANCE, 100, pre);
+    let first = newton(&op0, &at(lam0, 0.0), Control::Load(params.w), h0, d0, 100, pre);
     let mut iterations = first.iterations;
     let mut sol = first;
     let v_target = params.v();
@@ -587,20 +654,20 @@ fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Precond
             let v_start = 1e-3 * mesh.a();
             if v_target <= v_start {
                 let op = Operator::new(mesh, lambda, params.k, v_target);
-                let s = newton(&op, &at(lambda, v_target), sol.h.clone(), sol.delta, TOLERANCE, 40, pre);
+                let s = newton(&op, &at(lambda, v_target), Control::Load(params.w), sol.h.clone(), sol.delta, 40, pre);
                 let it = s.iterations;
                 (s, it)
             } else {
                 continue_geometric(v_start, v_target, 4.0, sol, |v, h, delta| {
                     let op = Operator::new(mesh, lambda, params.k, v);
-                    newton(&op, &at(lambda, v), h.to_vec(), delta, TOLERANCE, 40, pre)
+                    newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
                 })
             }
         } else {
             let v = sol.params.v();
             continue_geometric(lam0, params.lambda, 1.5, sol, |lambda, h, delta| {
                 let op = Operator::new(mesh, lambda, params.k, v);
-                newton(&op, &at(lambda, v), h.to_vec(), delta, TOLERANCE, 40, pre)
+                newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
             })
         };
         sol = s;
@@ -609,6 +676,34 @@ fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Precond
     sol.params = *params;
     sol.iterations = iterations;
     sol
+}
+
+/// Newton solves under approach control for one (mesh, lambda, k, V): the operator and
+/// the preconditioner are built once and shared by every approach of a path.
+pub struct ApproachSolver {
+    op: Operator,
+    params: Params,
+    pre: Preconditioner,
+}
+
+impl ApproachSolver {
+    /// The solver at the mesh and parameters of `from` (its speed V is kept at every load).
+    pub fn new(from: &Solution) -> ApproachSolver {
+        let p = from.params;
+        ApproachSolver { op: Operator::new(from.mesh, p.lambda, p.k, p.v()), params: p, pre: Preconditioner::default() }
+    }
+
+    /// The equilibrium at `approach` (`Solution::approach`), by Newton from the gaps and
+    /// the Delta of `guess`.
+    pub fn solve(&mut self, approach: f64, h0: &[f64], delta0: f64) -> Solution {
+        newton(&self.op, &self.params, Control::Approach(approach), h0.to_vec(), delta0, 40, &mut self.pre)
+    }
+
+    /// The equilibrium at load `w` from the gaps and approach of `guess` (load control).
+    pub fn solve_load(&mut self, w: f64, guess: &Solution) -> Solution {
+        let params = self.params.with_load(w);
+        newton(&self.op, &params, Control::Load(w), guess.h.clone(), guess.delta, 40, &mut self.pre)
+    }
 }
 
 /// A solution with the Richardson estimate of the discretisation error of mu*: the
@@ -648,7 +743,7 @@ pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
         .collect();
     let op = Operator::new(mesh, params.lambda, params.k, params.v());
     let mut pre = Preconditioner::default();
-    let s = newton(&op, &params, h, coarse.delta, TOLERANCE, 40, &mut pre);
+    let s = newton(&op, &params, Control::Load(params.w), h, coarse.delta, 40, &mut pre);
     if s.converged {
         s
     } else {
@@ -710,23 +805,38 @@ mod tests {
         let params = Params { lambda: 1.3, w: 0.7, k: 0.1, v0: 1.0 };
         let mesh = Mesh { n: 40, half_length: 4.0 };
         let op = Operator::new(mesh, params.lambda, params.k, params.v());
-        let sys = System::new(&op, &params);
-        let h: Vec<f64> = (0..40).map(|i| 0.3 * ((i as f64) * 0.7).sin() + 0.2).collect();
-        let delta = 0.4;
-        let ev = sys.eval(&h, delta);
-        let jac = sys.jacobian(&ev.dp);
-        let eps = 1e-6;
-        for j in [0, 7, 20, 39, 40] {
-            let (mut hp, mut dpl) = (h.clone(), delta);
-            if j < 40 {
-                hp[j] += eps;
-            } else {
-                dpl += eps;
+        for control in [Control::Load(params.w), Control::Approach(0.2)] {
+            let sys = System::new(&op, control);
+            let h: Vec<f64> = (0..40).map(|i| 0.3 * ((i as f64) * 0.7).sin() + 0.2).collect();
+            let delta = 0.4;
+            let ev = sys.eval(&h, delta);
+            let jac = sys.jacobian(&ev.dp);
+            let eps = 1e-6;
+            for j in [0, 7, 20, 39, 40] {
+                let (mut hp, mut dpl) = (h.clone(), delta);
+                if j < 40 {
+                    hp[j] += eps;
+                } else {
+                    dpl += eps;
+                }
+                let ev2 = sys.eval(&hp, dpl);
+                for i in 0..=40 {
+                    let fd = (ev2.r[i] - ev.r[i]) / eps;
+                    assert!(
+                        (fd - jac[(i, j)]).abs() < 1e-4 * (1.0 + fd.abs()),
+                        "{control:?} ({i},{j}): {fd} vs {}",
+                        jac[(i, j)]
+                    );
+                }
             }
-            let ev2 = sys.eval(&hp, dpl);
+            // The matrix-free product and the preconditioner without dropping agree with it.
+            let v: Vec<f64> = (0..=40).map(|i| ((i as f64) * 0.37).cos()).collect();
+            let jv = sys.apply_jacobian(&ev.dp, &v);
+            let exact = ActiveLu::new(&sys, &ev.dp, 0.0).solve(&jv);
             for i in 0..=40 {
-                let fd = (ev2.r[i] - ev.r[i]) / eps;
-                assert!((fd - jac[(i, j)]).abs() < 1e-4 * (1.0 + fd.abs()), "({i},{j}): {fd} vs {}", jac[(i, j)]);
+                let dense: f64 = (0..=40).map(|j| jac[(i, j)] * v[j]).sum();
+                assert!((dense - jv[i]).abs() < 1e-10, "{control:?} row {i}");
+                assert!((exact[i] - v[i]).abs() < 1e-8, "{control:?} inverse, row {i}");
             }
         }
     }
@@ -739,7 +849,7 @@ mod tests {
         let s = solve(&params, mesh);
         assert!(s.converged);
         let op = Operator::new(mesh, params.lambda, params.k, params.v());
-        let sys = System::new(&op, &params);
+        let sys = System::new(&op, Control::Load(params.w));
         let ev = sys.eval(&s.h, s.delta);
         let rhs: Vec<f64> = (0..=mesh.n).map(|i| ((i as f64) * 0.37).sin()).collect();
         let resid = |d: &[f64]| {

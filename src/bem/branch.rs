@@ -1,0 +1,236 @@
+//! Following the equilibrium branch of the adhesive cylinder of Chapter 4 towards
+//! detachment: the pull-off load and states under negative (tensile) loads (thesis
+//! Sections 4.3 and 5.3; the model and units of `solver`, Eqs. 4.4-4.18).
+//!
+//! Under load control the branch ends in a fold: the pull-off load is the minimum of W over
+//! the branch, where the load-control Jacobian is singular, and Newton started at a
+//! negative load can land on the unstable branch (small contact) or on another equilibrium
+//! of the finite domain. The branch is therefore walked under approach control
+//! (`Control::Approach`: the approach Delta measured from the domain edges imposed, W
+//! computed), whose Jacobian stays regular through the load minimum. From a converged state
+//! the approach is lowered in adaptive steps with a secant predictor; a step is accepted
+//! only if the adhered width changes by less than 20% (the guard against jumping branches).
+//! - `pull_off`: walk until W rises again, then golden-section search in the approach.
+//! - `descend_to_load`: walk until W passes a target above the pull-off, then Newton under
+//!   load control from the interpolation of the two bracketing states: a stable state.
+//!
+//! The speed V = v tau/beta is held fixed along the walk.
+
+use super::solver::{ApproachSolver, Solution};
+use super::traction;
+
+/// Largest relative change of the adhered half-width between accepted neighbours.
+const BRANCH_JUMP: f64 = 0.2;
+/// Steps of a walk before giving up.
+const MAX_STEPS: usize = 400;
+
+fn on_branch(from: &Solution, to: &Solution) -> bool {
+    match (from.adhered_half_width(), to.adhered_half_width()) {
+        (Some(a), Some(b)) => (b - a).abs() <= BRANCH_JUMP * a,
+        _ => false,
+    }
+}
+
+/// A walk down the branch under approach control.
+struct Walk {
+    solver: ApproachSolver,
+    /// The last three accepted states, newest last.
+    states: Vec<Solution>,
+    step0: f64,
+    step: f64,
+    evaluations: usize,
+    iterations: usize,
+    path: Vec<(f64, f64)>,
+}
+
+impl Walk {
+    fn new(start: &Solution) -> Walk {
+        assert!(start.converged, "a walk starts from an equilibrium");
+        let width = start.adhered_half_width().unwrap_or(1.0);
+        let step0 = 0.02 * width * width;
+        Walk {
+            solver: ApproachSolver::new(start),
+            states: vec![start.clone()],
+            step0,
+            step: step0,
+            evaluations: 0,
+            iterations: 0,
+            path: vec![(start.approach(), start.load())],
+        }
+    }
+
+    fn current(&self) -> &Solution {
+        self.states.last().unwrap()
+    }
+
+    fn solve(&mut self, approach: f64, guess: &[f64], delta0: f64) -> Solution {
+        let s = self.solver.solve(approach, guess, delta0);
+        self.evaluations += 1;
+        self.iterations += s.iterations;
+        s
+    }
+
+    /// One accepted step down the branch (false when the steps shrink below 1e-6 of the
+    /// first without one being accepted: the branch ends, or turns in the approach).
+    fn advance(&mut self) -> bool {
+        let lambda = self.current().params.lambda;
+        while self.step >= 1e-6 * self.step0 {
+            let cur = self.current().clone();
+            let target = cur.approach() - self.step;
+            let delta0 = cur.delta - self.step;
+            let predicted = (self.states.len() >= 2)
+                .then(|| {
+                    let prev = &self.states[self.states.len() - 2];
+                    let r = self.step / (prev.approach() - cur.approach());
+                    cur.h.iter().zip(&prev.h).map(|(h1, h0)| h1 + r * (h1 - h0)).collect::<Vec<f64>>()
+                })
+                .filter(|h| {
+                    h.iter().zip(&cur.h).all(|(&hp, &h1)| traction::z_of(hp, lambda) > 0.3 * traction::z_of(h1, lambda))
+                });
+            let mut trial = self.solve(target, predicted.as_deref().unwrap_or(&cur.h), delta0);
+            if !(trial.converged && on_branch(&cur, &trial)) && predicted.is_some() {
+                trial = self.solve(target, &cur.h, delta0);
+            }
+            if trial.converged && on_branch(&cur, &trial) {
+                self.path.push((trial.approach(), trial.load()));
+                self.states.push(trial);
+                if self.states.len() > 3 {
+                    self.states.remove(0);
+                }
+                self.step = (self.step * 1.5).min(8.0 * self.step0);
+                return true;
+            }
+            self.step *= 0.5;
+        }
+        false
+    }
+}
+
+/// The result of a pull-off search.
+#[derive(Clone, Debug)]
+pub struct PullOff {
+    /// The pull-off load: the smallest W on the branch (negative with adhesion).
+    pub load: f64,
+    /// The equilibrium at that load.
+    pub solution: Solution,
+    /// True if the minimum was bracketed and refined; false if the branch ended first (a
+    /// fold in the approach, or no step could stay on the branch): `load` is then the
+    /// smallest load reached.
+    pub converged: bool,
+    /// Newton solves and iterations spent.
+    pub evaluations: usize,
+    pub iterations: usize,
+    /// The accepted states of the walk: (approach, W), the approach of `Solution::approach`.
+    pub path: Vec<(f64, f64)>,
+}
+
+/// Walks down the branch from the converged state `start` (any load above the pull-off) and
+/// returns its minimum load, refined until the bracket in the approach is below `tol`
+/// times the first step.
+pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
+    let mut walk = Walk::new(start);
+    let mut bracket = None;
+    for _ in 0..MAX_STEPS {
+        if !walk.advance() {
+            break;
+        }
+        let n = walk.states.len();
+        if n >= 2 && walk.states[n - 1].load() > walk.states[n - 2].load() {
+            let centre = walk.states[n - 2].clone();
+            let upper = if n >= 3 { walk.states[n - 3].approach() } else { centre.approach() + walk.step0 };
+            bracket = Some((centre, walk.states[n - 1].approach(), upper));
+            break;
+        }
+    }
+    let Some((centre, lo, hi)) = bracket else {
+        let last = walk.current().clone();
+        return PullOff {
+            load: last.load(),
+            solution: last,
+            converged: false,
+            evaluations: walk.evaluations,
+            iterations: walk.iterations,
+            path: walk.path,
+        };
+    };
+    // Golden-section search for the minimum load in [lo, hi], each solve from the centre.
+    let mut best = centre.clone();
+    let eval = |a: f64, walk: &mut Walk, best: &mut Solution| -> f64 {
+        let s = walk.solve(a, &centre.h, centre.delta + a - centre.approach());
+        if s.converged && on_branch(&centre, &s) {
+            let w = s.load();
+            if w < best.load() {
+                *best = s;
+            }
+            w
+        } else {
+            f64::INFINITY
+        }
+    };
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (lo, hi);
+    let mut x1 = b - g * (b - a);
+    let mut x2 = a + g * (b - a);
+    let mut f1 = eval(x1, &mut walk, &mut best);
+    let mut f2 = eval(x2, &mut walk, &mut best);
+    while b - a > tol * walk.step0 {
+        if f1 > f2 {
+            a = x1;
+            (x1, f1) = (x2, f2);
+            x2 = a + g * (b - a);
+            f2 = eval(x2, &mut walk, &mut best);
+        } else {
+            b = x2;
+            (x2, f2) = (x1, f1);
+            x1 = b - g * (b - a);
+            f1 = eval(x1, &mut walk, &mut best);
+        }
+    }
+    PullOff {
+        load: best.load(),
+        solution: best,
+        converged: true,
+        evaluations: walk.evaluations,
+        iterations: walk.iterations,
+        path: walk.path,
+    }
+}
+
+/// The stable equilibrium at load `w`, below the load of `start` and above the pull-off:
+/// walks down the branch until the load passes `w`, then solves under load control from the
+/// linear interpolation of the two bracketing states. If the branch reaches its minimum (or
+/// ends) first, `w` is beyond the pull-off: the result is the last state reached, marked
+/// not converged, its residual the missing load.
+pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
+    let mut walk = Walk::new(start);
+    if start.load() <= w {
+        return start.clone();
+    }
+    for _ in 0..MAX_STEPS {
+        if !walk.advance() {
+            break;
+        }
+        let n = walk.states.len();
+        let (above, below) = (walk.states[n - 2].clone(), walk.states[n - 1].clone());
+        if below.load() > above.load() {
+            break;
+        }
+        if below.load() <= w {
+            let t = (above.load() - w) / (above.load() - below.load());
+            let mut guess = above.clone();
+            guess.h = above.h.iter().zip(&below.h).map(|(a, b)| a + t * (b - a)).collect();
+            guess.delta = above.delta + t * (below.delta - above.delta);
+            let mut s = walk.solver.solve_load(w, &guess);
+            s.iterations += walk.iterations;
+            if !on_branch(&above, &s) {
+                s.converged = false;
+            }
+            return s;
+        }
+    }
+    let mut last = walk.current().clone();
+    last.iterations = walk.iterations;
+    last.converged = false;
+    last.residual = (last.load() - w).abs();
+    last
+}
