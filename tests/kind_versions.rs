@@ -23,6 +23,7 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("util.sleep", json!({"x": 1.25})),
         ("bem.sweep", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0})),
         ("bem.profile", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 40, "half_length": 5.0})),
+        ("bem.pulloff", json!({"lambda": 1.0, "k": 0.1, "V": 1.0, "n": 64})),
         ("util.fail", json!({"message": "m", "x": 2})),
         (
             "bem.maxima",

@@ -15,11 +15,15 @@ use serde::{Deserialize, Serialize};
 pub struct BemParams {
     /// Maugis-Tabor parameter lambda (Eq. 4.9), > 0 (sweepable).
     pub lambda: f64,
-    /// Dimensionless load W (Eq. 4.6), > 0 (sweepable).
+    /// Dimensionless load W (Eq. 4.6), nonzero (sweepable). Negative: a tensile load (the
+    /// cylinder beneath the substrate, Chapter 5), reached on the stable branch by walking
+    /// down from |W| under approach control; beyond the pull-off the point is reported as
+    /// not converged.
     pub W: f64,
     /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
     pub k: f64,
-    /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18), >= 0 (sweepable).
+    /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18; a0 the Hertz half-width of |W|), >= 0
+    /// (sweepable).
     pub V0: f64,
     /// A fixed number of elements (the error is then estimated against n/2); default: the
     /// mesh is chosen from `rel_tol`.
@@ -71,7 +75,9 @@ impl BemParams {
     fn validate(&self) -> Vec<FieldError> {
         let mut e = Vec::new();
         check::positive(&mut e, "lambda", self.lambda);
-        check::positive(&mut e, "W", self.W);
+        if !(self.W != 0.0 && self.W.is_finite()) {
+            e.push(FieldError::new("W", format!("must be nonzero and finite, got {}", self.W)));
+        }
         check::in_open(&mut e, "k", self.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
         if !(self.V0 >= 0.0 && self.V0.is_finite()) {
             e.push(FieldError::new("V0", format!("must be zero or positive, got {}", self.V0)));
@@ -116,13 +122,14 @@ fn extremes(s: &Solution) -> (f64, f64) {
     (finite(max), finite(min))
 }
 
-/// One sliding point: friction and its parts, contact edges, approach, extreme
-/// pressures, solver diagnostics and the Richardson error estimate of mu*.
+/// One sliding (or rolling) point: friction and its parts, the rolling friction force
+/// F_T* = mu* |W| (Eq. 5.6), contact edges, approach, extreme pressures, solver diagnostics
+/// and the Richardson error estimate of mu*.
 pub struct BemSweep;
 
 impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
     type Params = BemParams;
@@ -143,6 +150,7 @@ impl Kind for BemSweep {
             .with_f64("mu_star", vec![finite(f.mu_star)])
             .with_f64("mu_adh", vec![finite(f.mu_adh)])
             .with_f64("mu_comp", vec![finite(f.mu_comp)])
+            .with_f64("F_T", vec![finite(f.mu_star * p.W.abs())])
             .with_f64("x_lead", vec![finite(lead)])
             .with_f64("x_trail", vec![finite(trail)])
             .with_f64("approach", vec![finite(s.delta)])

@@ -4,6 +4,7 @@
 pub mod bem;
 pub mod figure;
 pub mod fit;
+pub mod pulloff;
 pub mod theory;
 pub mod util;
 
@@ -14,6 +15,7 @@ pub fn registry() -> Registry {
     let mut r = Registry::new();
     theory::register(&mut r);
     bem::register(&mut r);
+    pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
     util::register(&mut r);

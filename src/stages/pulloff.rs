@@ -1,0 +1,137 @@
+//! Stage kind `bem.pulloff`: the pull-off load of the Chapter 4/5 model at one speed
+//! (`bem::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
+
+use super::check;
+use crate::bem::branch::{pull_off, PullOff};
+use crate::bem::solver::{self, Mesh, Params};
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::table::{ColumnData, Table};
+use anyhow::Result;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct PullOffParams {
+    /// Maugis-Tabor parameter lambda (Eq. 4.9), > 0 (sweepable).
+    pub lambda: f64,
+    /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
+    pub k: f64,
+    /// Speed V = v tau/beta >= 0 (sweepable): independent of the load, which is the unknown
+    /// here; the table also gives V0 = V/a0 with a0 the Hertz half-width of the pull-off load.
+    pub V: f64,
+    /// A fixed number of elements (default: from `bem::solver::starting_mesh`, doubled until
+    /// the Richardson estimate of the pull-off load meets rel_tol).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<usize>,
+    /// Requested relative accuracy of the pull-off load (default 1e-3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rel_tol: Option<f64>,
+}
+
+/// The load the walk starts from.
+const W_START: f64 = 0.1;
+/// Bracket of the golden-section search in the approach, relative to the first step.
+const APPROACH_TOL: f64 = 1e-3;
+
+/// The pull-off load at one (lambda, k, V), with its Richardson estimate (the same search
+/// on half the elements).
+pub struct BemPullOff;
+
+impl Kind for BemPullOff {
+    const NAME: &'static str = "bem.pulloff";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked under approach control) at speed V";
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];
+    type Params = PullOffParams;
+
+    fn validate(p: &PullOffParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", p.lambda);
+        check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
+        if !(p.V >= 0.0 && p.V.is_finite()) {
+            e.push(FieldError::new("V", format!("must be zero or positive, got {}", p.V)));
+        }
+        if let Some(n) = p.n {
+            if !(16..=32_000).contains(&n) {
+                e.push(FieldError::new("n", format!("must lie in 16..=32000, got {n}")));
+            }
+        }
+        if let Some(t) = p.rel_tol {
+            check::in_open(&mut e, "rel_tol", t, 0.0, 1.0, "the requested accuracy");
+        }
+        e
+    }
+
+    fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let start = Params { lambda: p.lambda, w: W_START, k: p.k, v0: 0.0 }.with_v(p.V);
+        let rel_tol = p.rel_tol.unwrap_or(solver::DEFAULT_REL_TOL);
+        let first = solver::starting_mesh(&start, rel_tol);
+        // The search on a mesh of n elements (None if the starting solve fails).
+        let search = |n: usize| -> (Option<PullOff>, usize) {
+            let s = solver::solve(&start, Mesh { n, ..first });
+            (s.converged.then(|| pull_off(&s, APPROACH_TOL)), s.iterations)
+        };
+        let estimate_of = |f: &Option<PullOff>, c: &Option<PullOff>| match (f, c) {
+            (Some(f), Some(c)) if f.converged && c.converged => (f.load - c.load).abs() / 3.0,
+            _ => f64::MAX,
+        };
+        // Richardson on the pull-off load itself: n doubles until the estimate meets rel_tol.
+        let mut n = p.n.unwrap_or(first.n);
+        let (mut coarse, _) = search(n / 2);
+        let (mut po, mut start_iterations) = search(n);
+        let mut estimate = estimate_of(&po, &coarse);
+        while p.n.is_none()
+            && estimate > rel_tol * po.as_ref().map_or(0.0, |r| r.load.abs())
+            && 2 * n <= solver::DEFAULT_N_MAX
+            && po.as_ref().is_some_and(|r| r.converged)
+        {
+            n *= 2;
+            coarse = po;
+            (po, start_iterations) = search(n);
+            estimate = estimate_of(&po, &coarse);
+        }
+        let converged = po.as_ref().is_some_and(|r| r.converged);
+        let fine_mesh = Mesh { n, ..first };
+        let (load, width, edges, mu, evaluations, iterations) = match &po {
+            Some(r) => (
+                r.load,
+                r.solution.adhered_half_width().unwrap_or(0.0),
+                r.solution.contact_edges().unwrap_or((0.0, 0.0)),
+                r.solution.friction().mu_star,
+                r.evaluations,
+                r.iterations,
+            ),
+            None => (0.0, 0.0, (0.0, 0.0), 0.0, 0, start_iterations),
+        };
+        let v0 = if load != 0.0 { p.V / Params { w: load, ..start }.a0() } else { 0.0 };
+        let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
+        let t = Table::new()
+            .with_f64("lambda", vec![p.lambda])
+            .with_f64("k", vec![p.k])
+            .with_f64("V", vec![p.V])
+            .with_f64("V0", vec![fin(v0)])
+            .with_f64("W_pulloff", vec![fin(load)])
+            .with_f64("A", vec![fin(width)])
+            .with_f64("two_A", vec![fin(2.0 * width)])
+            .with_f64("x_lead", vec![fin(edges.0)])
+            .with_f64("x_trail", vec![fin(edges.1)])
+            .with_f64("mu_star", vec![fin(mu)])
+            .with_f64("F_T", vec![fin(mu * load.abs())])
+            .with("converged", ColumnData::Bool(vec![converged && load.is_finite()]))
+            .with("evaluations", ColumnData::I64(vec![evaluations as i64]))
+            .with("iterations", ColumnData::I64(vec![iterations as i64]))
+            .with_f64("error_estimate", vec![estimate])
+            .with("n", ColumnData::I64(vec![fine_mesh.n as i64]))
+            .with_f64("half_length", vec![fine_mesh.half_length])
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
+        Ok(t.into())
+    }
+}
+
+pub fn register(r: &mut Registry) {
+    r.add::<BemPullOff>();
+}
