@@ -15,6 +15,7 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
     BTreeMap::from([
         ("theory.maugis_dugdale", json!({"lambda": 0.7, "A_min": 0.1, "A_max": 2.0, "n": 7})),
         ("theory.maugis_pulloff", json!({"lambda": 0.7})),
+        ("theory.line_pulloff", json!({"lambda": 0.7})),
         ("theory.sphere_limits", json!({"A_min": 0.1, "A_max": 2.0, "n": 5})),
         ("theory.hertz_jkr_pressure", json!({"P_bar": 1.0, "n": 12})),
         ("theory.persson", json!({"inv_k": 10, "V0": 1.3})),

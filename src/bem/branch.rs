@@ -5,18 +5,21 @@
 //! Under load control the branch ends in a fold: the pull-off load is the minimum of W over
 //! the branch, where the load-control Jacobian is singular, and Newton started at a
 //! negative load can land on the unstable branch (small contact) or on another equilibrium
-//! of the finite domain. The branch is therefore walked under approach control
-//! (`Control::Approach`: the approach Delta measured from the domain edges imposed, W
-//! computed), whose Jacobian stays regular through the load minimum. From a converged state
-//! the approach is lowered in adaptive steps with a secant predictor; a step is accepted
-//! only if the adhered width changes by less than 20% (the guard against jumping branches).
-//! - `pull_off`: walk until W rises again, then golden-section search in the approach.
+//! of the finite domain. The branch is therefore walked by pseudo-arclength continuation in
+//! the plane of (approach a, load W) (`Control::Path`: t_a a + t_W W = value, with (t_a, t_W)
+//! the unit secant of the last two states), regular through the load minimum and through
+//! folds in the approach (at k = 0.001, lambda = 3, V = 2 the approach turns before the load
+//! does: fixed-grip instability precedes the pull-off, and pure approach control stalls
+//! there). The first step lowers the approach; a step is accepted only if the adhered width
+//! changes by less than 20% (the guard against jumping branches).
+//! - `pull_off`: walk until W rises again, then golden-section search along the path
+//!   (arclength from the middle state, its central secant as the direction).
 //! - `descend_to_load`: walk until W passes a target above the pull-off, then Newton under
 //!   load control from the interpolation of the two bracketing states: a stable state.
 //!
 //! The speed V = v tau/beta is held fixed along the walk.
 
-use super::solver::{ApproachSolver, Solution};
+use super::solver::{Control, PathSolver, Solution};
 use super::traction;
 
 /// Largest relative change of the adhered half-width between accepted neighbours.
@@ -33,14 +36,31 @@ fn on_branch(from: &Solution, to: &Solution) -> bool {
 
 /// A walk down the branch under approach control.
 struct Walk {
-    solver: ApproachSolver,
+    solver: PathSolver,
     /// The last three accepted states, newest last.
     states: Vec<Solution>,
     step0: f64,
     step: f64,
     evaluations: usize,
     iterations: usize,
-    path: Vec<(f64, f64)>,
+    path: Vec<[f64; 2]>,
+}
+
+/// A point of the (approach, load) plane.
+fn point(s: &Solution) -> [f64; 2] {
+    [s.approach(), s.load()]
+}
+
+/// The unit vector from p to q, and the distance.
+fn direction(p: [f64; 2], q: [f64; 2]) -> ([f64; 2], f64) {
+    let d = [q[0] - p[0], q[1] - p[1]];
+    let len = d[0].hypot(d[1]);
+    ([d[0] / len, d[1] / len], len)
+}
+
+/// The control fixing the arclength `s` from `at` along the unit direction `t`.
+fn arc(t: [f64; 2], at: [f64; 2], s: f64) -> Control {
+    Control::Path { t_approach: t[0], t_load: t[1], value: t[0] * at[0] + t[1] * at[1] + s }
 }
 
 impl Walk {
@@ -49,13 +69,13 @@ impl Walk {
         let width = start.adhered_half_width().unwrap_or(1.0);
         let step0 = 0.02 * width * width;
         Walk {
-            solver: ApproachSolver::new(start),
+            solver: PathSolver::new(start),
             states: vec![start.clone()],
             step0,
             step: step0,
             evaluations: 0,
             iterations: 0,
-            path: vec![(start.approach(), start.load())],
+            path: vec![point(start)],
         }
     }
 
@@ -63,36 +83,41 @@ impl Walk {
         self.states.last().unwrap()
     }
 
-    fn solve(&mut self, approach: f64, guess: &[f64], delta0: f64) -> Solution {
-        let s = self.solver.solve(approach, guess, delta0);
+    fn solve(&mut self, control: Control, guess: &[f64], delta0: f64) -> Solution {
+        let s = self.solver.solve(control, guess, delta0);
         self.evaluations += 1;
         self.iterations += s.iterations;
         s
     }
 
-    /// One accepted step down the branch (false when the steps shrink below 1e-6 of the
-    /// first without one being accepted: the branch ends, or turns in the approach).
+    /// One accepted step along the branch (false when the steps shrink below 1e-6 of the
+    /// first without one being accepted: the branch ends).
     fn advance(&mut self) -> bool {
         let lambda = self.current().params.lambda;
         while self.step >= 1e-6 * self.step0 {
             let cur = self.current().clone();
-            let target = cur.approach() - self.step;
-            let delta0 = cur.delta - self.step;
-            let predicted = (self.states.len() >= 2)
-                .then(|| {
-                    let prev = &self.states[self.states.len() - 2];
-                    let r = self.step / (prev.approach() - cur.approach());
-                    cur.h.iter().zip(&prev.h).map(|(h1, h0)| h1 + r * (h1 - h0)).collect::<Vec<f64>>()
-                })
-                .filter(|h| {
-                    h.iter().zip(&cur.h).all(|(&hp, &h1)| traction::z_of(hp, lambda) > 0.3 * traction::z_of(h1, lambda))
-                });
-            let mut trial = self.solve(target, predicted.as_deref().unwrap_or(&cur.h), delta0);
+            // Direction: the secant of the last two states, or down in the approach.
+            let (t, predicted, delta0) = match self.states.len() {
+                1 => ([-1.0, 0.0], None, cur.delta - self.step),
+                m => {
+                    let prev = &self.states[m - 2];
+                    let (t, len) = direction(point(prev), point(&cur));
+                    let r = self.step / len;
+                    let h: Vec<f64> = cur.h.iter().zip(&prev.h).map(|(h1, h0)| h1 + r * (h1 - h0)).collect();
+                    let safe = h
+                        .iter()
+                        .zip(&cur.h)
+                        .all(|(&hp, &h1)| traction::z_of(hp, lambda) > 0.3 * traction::z_of(h1, lambda));
+                    (t, safe.then_some(h), cur.delta + r * (cur.delta - prev.delta))
+                }
+            };
+            let control = arc(t, point(&cur), self.step);
+            let mut trial = self.solve(control, predicted.as_deref().unwrap_or(&cur.h), delta0);
             if !(trial.converged && on_branch(&cur, &trial)) && predicted.is_some() {
-                trial = self.solve(target, &cur.h, delta0);
+                trial = self.solve(control, &cur.h, cur.delta);
             }
             if trial.converged && on_branch(&cur, &trial) {
-                self.path.push((trial.approach(), trial.load()));
+                self.path.push(point(&trial));
                 self.states.push(trial);
                 if self.states.len() > 3 {
                     self.states.remove(0);
@@ -120,13 +145,13 @@ pub struct PullOff {
     /// Newton solves and iterations spent.
     pub evaluations: usize,
     pub iterations: usize,
-    /// The accepted states of the walk: (approach, W), the approach of `Solution::approach`.
-    pub path: Vec<(f64, f64)>,
+    /// The accepted states of the walk: [approach, W], the approach of `Solution::approach`.
+    pub path: Vec<[f64; 2]>,
 }
 
 /// Walks down the branch from the converged state `start` (any load above the pull-off) and
-/// returns its minimum load, refined until the bracket in the approach is below `tol`
-/// times the first step.
+/// returns its minimum load, refined until the bracket along the path is below `tol` times
+/// the first step.
 pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
     let mut walk = Walk::new(start);
     let mut bracket = None;
@@ -135,14 +160,12 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
             break;
         }
         let n = walk.states.len();
-        if n >= 2 && walk.states[n - 1].load() > walk.states[n - 2].load() {
-            let centre = walk.states[n - 2].clone();
-            let upper = if n >= 3 { walk.states[n - 3].approach() } else { centre.approach() + walk.step0 };
-            bracket = Some((centre, walk.states[n - 1].approach(), upper));
+        if n >= 3 && walk.states[n - 1].load() > walk.states[n - 2].load() {
+            bracket = Some((walk.states[n - 3].clone(), walk.states[n - 2].clone(), walk.states[n - 1].clone()));
             break;
         }
     }
-    let Some((centre, lo, hi)) = bracket else {
+    let Some((before, centre, after)) = bracket else {
         let last = walk.current().clone();
         return PullOff {
             load: last.load(),
@@ -153,14 +176,19 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
             path: walk.path,
         };
     };
-    // Golden-section search for the minimum load in [lo, hi], each solve from the centre.
+    // Golden-section search for the minimum load along the path: arclength s from the
+    // centre along its central secant, between the two neighbours.
+    let (t, _) = direction(point(&before), point(&after));
+    let c = point(&centre);
+    let along = |q: [f64; 2]| t[0] * (q[0] - c[0]) + t[1] * (q[1] - c[1]);
+    let (lo, hi) = (along(point(&before)), along(point(&after)));
     let mut best = centre.clone();
-    let eval = |a: f64, walk: &mut Walk, best: &mut Solution| -> f64 {
-        let s = walk.solve(a, &centre.h, centre.delta + a - centre.approach());
-        if s.converged && on_branch(&centre, &s) {
-            let w = s.load();
+    let eval = |s: f64, walk: &mut Walk, best: &mut Solution| -> f64 {
+        let r = walk.solve(arc(t, c, s), &centre.h, centre.delta);
+        if r.converged && on_branch(&centre, &r) {
+            let w = r.load();
             if w < best.load() {
-                *best = s;
+                *best = r;
             }
             w
         } else {

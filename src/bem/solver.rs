@@ -197,17 +197,26 @@ impl Solution {
     /// Half-width of the region where the surfaces are closer than the separation of
     /// peak Lennard-Jones tension, H_c = (3^(1/6) - 1)/(alpha lambda): the contact in the
     /// JKR sense (the P > 0 width is not: in 2D the JKR pressure turns tensile inside the
-    /// contact, ERRATA 19). None if no element is that close.
+    /// contact, ERRATA 19), with the crossings interpolated between nodes. None if no node
+    /// is that close.
     pub fn adhered_half_width(&self) -> Option<f64> {
         let hc = (3f64.powf(1.0 / 6.0) - 1.0) / (ALPHA * self.params.lambda);
         let first = self.h.iter().position(|&h| h <= hc)?;
         let last = self.h.iter().rposition(|&h| h <= hc)?;
+        // The crossings of H = hc, interpolated linearly between nodes (the domain edge if
+        // the first or last node is already inside).
         let a = self.mesh.a();
-        Some(0.5 * (self.x[last] - self.x[first]) + a)
+        let cross = |i: usize, j: usize| {
+            let t = (self.h[i] - hc) / (self.h[i] - self.h[j]);
+            self.x[i] + t * (self.x[j] - self.x[i])
+        };
+        let left = if first == 0 { self.x[0] - a } else { cross(first - 1, first) };
+        let right = if last + 1 == self.h.len() { self.x[last] + a } else { cross(last + 1, last) };
+        Some(0.5 * (right - left))
     }
 
     /// The approach measured from the domain edges, Delta - (U(X_0) + U(X_n-1))/2: the
-    /// quantity `Control::Approach` imposes.
+    /// quantity `Control::approach` imposes.
     pub fn approach(&self) -> f64 {
         self.delta - 0.5 * (self.u[0] + self.u[self.u.len() - 1])
     }
@@ -258,12 +267,21 @@ impl Operator {
 pub enum Control {
     /// The load: lambda Int P dX = W (the approach Delta is an unknown).
     Load(f64),
-    /// The approach measured from the domain edges, Delta - (U(X_0) + U(X_n-1))/2 (the
-    /// load follows): the grip of a finite 2D body, whose compliance is positive at every
-    /// speed (Delta alone is not: at high speed the moving kernel adds a constant times
-    /// the load to U, and W(Delta) can turn). Regular through the load-control fold, so the
-    /// branch can be followed to and past the pull-off load.
-    Approach(f64),
+    /// A combination of the approach a = Delta - (U(X_0) + U(X_n-1))/2, measured from the
+    /// domain edges (the grip of a finite 2D body: Delta alone is not, since at high speed
+    /// the moving kernel adds a constant times the load to U), and the load carried W:
+    ///   t_approach a + t_load W = value.
+    /// (1, 0) is approach control, regular through the load-control fold (the pull-off);
+    /// the unit tangent of the (a, W) path gives pseudo-arclength control, regular through
+    /// folds in the approach as well.
+    Path { t_approach: f64, t_load: f64, value: f64 },
+}
+
+impl Control {
+    /// Approach control: a = value.
+    pub fn approach(value: f64) -> Control {
+        Control::Path { t_approach: 1.0, t_load: 0.0, value }
+    }
 }
 
 /// The discrete equations of one point: residual and Jacobian in the unknowns (H, Delta).
@@ -296,7 +314,10 @@ impl<'a> System<'a> {
         let n = self.op.mesh.n;
         match self.control {
             Control::Load(_) => 2.0 * self.op.mesh.a() * self.load_scale,
-            Control::Approach(_) => -0.5 * (self.op.nodes[n - 1 - j] + self.op.nodes[2 * n - 2 - j]),
+            Control::Path { t_approach, t_load, .. } => {
+                -0.5 * t_approach * (self.op.nodes[n - 1 - j] + self.op.nodes[2 * n - 2 - j])
+                    + t_load * self.op.lambda * 2.0 * self.op.mesh.a()
+            }
         }
     }
 
@@ -307,7 +328,10 @@ impl<'a> System<'a> {
         let mut r: Vec<f64> = (0..n).map(|i| h[i] + delta - 0.5 * self.x[i] * self.x[i] - u[i]).collect();
         r.push(match self.control {
             Control::Load(w) => (2.0 * self.op.mesh.a() * p.iter().sum::<f64>() - w / self.op.lambda) * self.load_scale,
-            Control::Approach(d) => delta - 0.5 * (u[0] + u[n - 1]) - d,
+            Control::Path { t_approach, t_load, value } => {
+                let load = self.op.lambda * 2.0 * self.op.mesh.a() * p.iter().sum::<f64>();
+                t_approach * (delta - 0.5 * (u[0] + u[n - 1])) + t_load * load - value
+            }
         });
         let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let merit = r.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -322,7 +346,10 @@ impl<'a> System<'a> {
         let mut out: Vec<f64> = (0..n).map(|i| v[i] - g[i] + v[n]).collect();
         out.push(match self.control {
             Control::Load(_) => self.edge_row(0) * dv.iter().sum::<f64>(),
-            Control::Approach(_) => v[n] - 0.5 * (g[0] + g[n - 1]),
+            Control::Path { t_approach, t_load, .. } => {
+                t_approach * (v[n] - 0.5 * (g[0] + g[n - 1]))
+                    + t_load * self.op.lambda * 2.0 * self.op.mesh.a() * dv.iter().sum::<f64>()
+            }
         });
         out
     }
@@ -342,8 +369,8 @@ impl<'a> System<'a> {
         for j in 0..n {
             jac[(n, j)] = self.edge_row(j) * dp[j];
         }
-        if let Control::Approach(_) = self.control {
-            jac[(n, n)] = 1.0;
+        if let Control::Path { t_approach, .. } = self.control {
+            jac[(n, n)] = t_approach;
         }
         jac
     }
@@ -370,7 +397,10 @@ impl ActiveLu {
     fn new(sys: &System, dp: &[f64], drop: f64) -> ActiveLu {
         let n = sys.op.mesh.n;
         let load_weight = 2.0 * sys.op.mesh.a() * sys.load_scale;
-        let corner = f64::from(matches!(sys.control, Control::Approach(_)));
+        let corner = match sys.control {
+            Control::Load(_) => 0.0,
+            Control::Path { t_approach, .. } => t_approach,
+        };
         let col_norm = sys.op.nodes.iter().map(|c| c.abs()).sum::<f64>() + load_weight;
         let idx: Vec<usize> = (0..n).filter(|&j| dp[j].abs() * col_norm > drop).collect();
         let d: Vec<f64> = idx.iter().map(|&j| dp[j]).collect();
@@ -498,7 +528,7 @@ fn newton(
     let u_edges = op.edge_displacement(&ev.p);
     let params = match control {
         Control::Load(_) => *params,
-        Control::Approach(_) => params.with_load(lambda * 2.0 * op.mesh.a() * ev.p.iter().sum::<f64>()),
+        Control::Path { .. } => params.with_load(lambda * 2.0 * op.mesh.a() * ev.p.iter().sum::<f64>()),
     };
     Solution {
         params,
@@ -678,25 +708,26 @@ fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Precond
     sol
 }
 
-/// Newton solves under approach control for one (mesh, lambda, k, V): the operator and
-/// the preconditioner are built once and shared by every approach of a path.
-pub struct ApproachSolver {
+/// Newton solves along a path of equilibria of one (mesh, lambda, k, V) under
+/// `Control::Path` or load control: the operator and the preconditioner are built once and
+/// shared by every point of the path.
+pub struct PathSolver {
     op: Operator,
     params: Params,
     pre: Preconditioner,
 }
 
-impl ApproachSolver {
+impl PathSolver {
     /// The solver at the mesh and parameters of `from` (its speed V is kept at every load).
-    pub fn new(from: &Solution) -> ApproachSolver {
+    pub fn new(from: &Solution) -> PathSolver {
         let p = from.params;
-        ApproachSolver { op: Operator::new(from.mesh, p.lambda, p.k, p.v()), params: p, pre: Preconditioner::default() }
+        PathSolver { op: Operator::new(from.mesh, p.lambda, p.k, p.v()), params: p, pre: Preconditioner::default() }
     }
 
-    /// The equilibrium at `approach` (`Solution::approach`), by Newton from the gaps and
-    /// the Delta of `guess`.
-    pub fn solve(&mut self, approach: f64, h0: &[f64], delta0: f64) -> Solution {
-        newton(&self.op, &self.params, Control::Approach(approach), h0.to_vec(), delta0, 40, &mut self.pre)
+    /// The equilibrium under `control` (`Control::Path`), by Newton from the gaps `h0` and
+    /// approach `delta0`.
+    pub fn solve(&mut self, control: Control, h0: &[f64], delta0: f64) -> Solution {
+        newton(&self.op, &self.params, control, h0.to_vec(), delta0, 40, &mut self.pre)
     }
 
     /// The equilibrium at load `w` from the gaps and approach of `guess` (load control).
@@ -805,7 +836,8 @@ mod tests {
         let params = Params { lambda: 1.3, w: 0.7, k: 0.1, v0: 1.0 };
         let mesh = Mesh { n: 40, half_length: 4.0 };
         let op = Operator::new(mesh, params.lambda, params.k, params.v());
-        for control in [Control::Load(params.w), Control::Approach(0.2)] {
+        let arc = Control::Path { t_approach: -0.6, t_load: 0.8, value: 0.1 };
+        for control in [Control::Load(params.w), Control::approach(0.2), arc] {
             let sys = System::new(&op, control);
             let h: Vec<f64> = (0..40).map(|i| 0.3 * ((i as f64) * 0.7).sin() + 0.2).collect();
             let delta = 0.4;

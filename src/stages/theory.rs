@@ -4,7 +4,7 @@
 use super::check;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
-use crate::theory::{classical, persson, persson_brener};
+use crate::theory::{classical, line_contact, persson, persson_brener};
 use anyhow::{bail, Result};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -124,6 +124,38 @@ impl Kind for MaugisPullOff {
             .with_f64("A_bar_pulloff", vec![a])
             .with_f64("P_bar_jkr", vec![classical::JKR_PULL_OFF])
             .with_f64("P_bar_dmt", vec![classical::DMT_PULL_OFF])
+            .into())
+    }
+}
+
+/// Line-contact pull-off (2D, Chapter 4 units): Maugis-Dugdale, JKR and the rigid
+/// cylinder with the Lennard-Jones law, the limits of `bem.pulloff` at low speed.
+pub struct LinePullOff;
+
+impl Kind for LinePullOff {
+    const NAME: &'static str = "theory.line_pulloff";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "2D line-contact pull-off W: Maugis-Dugdale, JKR -3(pi/16)^(1/3), rigid Lennard-Jones -2.434 sqrt(lambda)";
+    const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    type Params = PullOffParams;
+
+    fn validate(p: &PullOffParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", p.lambda);
+        e
+    }
+
+    fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
+        let Some((load, a)) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
+            bail!("no line-contact pull-off found for lambda = {}", p.lambda)
+        };
+        Ok(Table::new()
+            .with_f64("lambda", vec![p.lambda])
+            .with_f64("W_md", vec![load])
+            .with_f64("A_md", vec![a])
+            .with_f64("W_jkr", vec![crate::bem::solver::jkr_pull_off()])
+            .with_f64("W_rigid_lj", vec![-line_contact::lj_rigid_pull_off_coefficient() * p.lambda.sqrt()])
             .into())
     }
 }
@@ -373,6 +405,7 @@ impl Kind for PerssonBrener {
 pub fn register(r: &mut Registry) {
     r.add::<MaugisDugdale>()
         .add::<MaugisPullOff>()
+        .add::<LinePullOff>()
         .add::<SphereLimits>()
         .add::<HertzJkrPressure>()
         .add::<Persson>()
