@@ -11,6 +11,29 @@ pub struct PowerLaw {
     pub n: usize,
 }
 
+/// The longest run of consecutive points (sorted by x, x and y > 0) over which every local
+/// slope d ln y / d ln x between neighbours lies within `tol` of `slope`: a power-law
+/// regime. Returns the index range [first, last] (at least `min_points` points).
+pub fn power_law_regime(points: &[(f64, f64)], slope: f64, tol: f64, min_points: usize) -> Option<(usize, usize)> {
+    let ok = |i: usize| {
+        let ((x0, y0), (x1, y1)) = (points[i], points[i + 1]);
+        x0 > 0.0 && y0 > 0.0 && x1 > x0 && y1 > 0.0 && ((y1 / y0).ln() / (x1 / x0).ln() - slope).abs() <= tol
+    };
+    let mut best: Option<(usize, usize)> = None;
+    let mut start = None;
+    for i in 0..points.len().saturating_sub(1) {
+        if ok(i) {
+            let s = *start.get_or_insert(i);
+            if best.is_none_or(|(a, b)| i + 1 - s > b - a) {
+                best = Some((s, i + 1));
+            }
+        } else {
+            start = None;
+        }
+    }
+    best.filter(|(a, b)| b + 1 - a >= min_points)
+}
+
 /// Fits y = c x^s to the points with x, y > 0; None with fewer than 3 such points or no
 /// spread in x.
 pub fn power_law(points: &[(f64, f64)]) -> Option<PowerLaw> {
@@ -50,6 +73,31 @@ pub fn power_law(points: &[(f64, f64)]) -> Option<PowerLaw> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn regimes_are_the_longest_runs_of_matching_local_slope() {
+        // y = x below 1, sqrt(x) (continuous) from 1 to 100, flat beyond.
+        let pts: Vec<(f64, f64)> = (0..25)
+            .map(|i| {
+                let x = 10f64.powf(-3.0 + 0.25 * i as f64);
+                (
+                    x,
+                    if x < 1.0 {
+                        x
+                    } else if x <= 100.0 {
+                        x.sqrt()
+                    } else {
+                        10.0
+                    },
+                )
+            })
+            .collect();
+        let (a, b) = power_law_regime(&pts, 1.0, 0.1, 3).unwrap();
+        assert_eq!((pts[a].0, pts[b].0), (1e-3, 1.0));
+        let (a, b) = power_law_regime(&pts, 0.5, 0.1, 3).unwrap();
+        assert!((pts[a].0 - 1.0).abs() < 1e-12 && (pts[b].0 - 100.0).abs() < 1e-9);
+        assert!(power_law_regime(&pts, 2.0, 0.1, 3).is_none());
+    }
 
     #[test]
     fn recovers_an_exact_power_law_and_scales_its_errors_with_the_noise() {

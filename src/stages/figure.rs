@@ -87,13 +87,17 @@ pub struct FitLayer {
     /// The fit stage (must be in `needs`).
     pub from: String,
     /// Legend label; `{slope}` and `{slope_std_error}` are replaced by the fitted values
-    /// (two decimals), other `{column}`s by the row's value.
+    /// (two decimals), other `{column}`s by the row's value. Omitted: no legend entry.
+    #[serde(default)]
     pub label: String,
     /// Draw over this x range instead of the fitted one.
     #[serde(default)]
     pub x_range: Option<[f64; 2]>,
     #[serde(default = "dashed")]
     pub style: Style,
+    /// Keep only rows where each named column equals the given value.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub filter: BTreeMap<String, f64>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
@@ -206,7 +210,14 @@ fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Seri
     let col = |name: &str| t.f64_column(name).with_context(|| format!("fit layer from `{}`", layer.from));
     let (slope, err, pre, lo, hi) =
         (col("slope")?, col("slope_std_error")?, col("prefactor")?, col("x_min")?, col("x_max")?);
+    let filters: Vec<(Vec<f64>, f64)> =
+        layer.filter.iter().map(|(name, v)| Ok((col(name)?, *v))).collect::<Result<_>>()?;
+    // Rows outside the filter, or without a fitted range (e.g. a regime not found), are skipped.
+    let keep = |row: usize| {
+        filters.iter().all(|(c, v)| c[row] == *v) && (layer.x_range.is_some() || (lo[row] > 0.0 && hi[row] > lo[row]))
+    };
     Ok((0..t.n_rows())
+        .filter(|&row| keep(row))
         .map(|row| {
             let mut label = layer
                 .label
@@ -246,7 +257,9 @@ fn power_of_ten(e: i32) -> String {
     format!("10{}{digits}", if e < 0 { "⁻" } else { "" })
 }
 
-fn axis_label(v: f64, log: bool) -> String {
+/// A tick label; on linear axes values within 1e-9 of the span of zero are 0 (plotters'
+/// tick positions carry rounding: -2.2e-17 was printed on Fig. 5.2d).
+fn axis_label(v: f64, log: bool, span: f64) -> String {
     if log {
         let r = v.round();
         if (v - r).abs() < 1e-6 {
@@ -254,6 +267,8 @@ fn axis_label(v: f64, log: bool) -> String {
         } else {
             String::new()
         }
+    } else if v.abs() < 1e-9 * span {
+        "0".into()
     } else {
         format_number(v)
     }
@@ -314,8 +329,8 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             .y_label_area_size(72)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| anyhow::anyhow!("{e:?}"))?;
-        let fx = |v: &f64| axis_label(*v, p.log_x);
-        let fy = |v: &f64| axis_label(*v, p.log_y);
+        let fx = |v: &f64| axis_label(*v, p.log_x, x1 - x0);
+        let fy = |v: &f64| axis_label(*v, p.log_y, y1 - y0);
         let n_x = if p.log_x { ((x1 - x0).round() as usize + 1).clamp(2, 13) } else { 8 };
         let n_y = if p.log_y { ((y1 - y0).round() as usize + 1).clamp(2, 13) } else { 8 };
         chart
@@ -409,7 +424,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 5;
+    const VERSION: u32 = 6;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 

@@ -4,6 +4,7 @@
 pub mod bem;
 pub mod figure;
 pub mod fit;
+pub mod pb;
 pub mod pulloff;
 pub mod theory;
 pub mod util;
@@ -18,6 +19,7 @@ pub fn registry() -> Registry {
     pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
+    pb::register(&mut r);
     util::register(&mut r);
     r
 }

@@ -11,6 +11,16 @@
 //!   f_T / dgamma = x - 1/x   (G_lead = dgamma^2 / G_trail),
 //! with the limits (ERRATA 14): (1 - k) u for u << 1, sqrt(u / (1 - k)) for
 //! 1 << u << (1 - k)/k^2, and 1/k - k for u -> inf.
+//!
+//! In the units of Chapters 4-5 (Eq. 5.6: F_T* = mu* |W| = (beta/a0) f_T/dgamma, with
+//! f_T/dgamma = lambda Int P dU/dX dX), with sigma_c = alpha_PB sigma0 (Eq. 5.18; not the
+//! alpha of the Lennard-Jones law, ERRATA 14): sigma0^2/(E0* dgamma) = lambda^2/beta, so
+//!   u = v/v0 = (2 pi)^2 alpha_PB^2 lambda^2 v tau/beta = (2 pi)^2 alpha_PB^2 lambda^2 V0 a0/beta,
+//! a0/beta = 2 sqrt(|W|/pi) (Eq. 5.19 as corrected in ERRATA 4). Hence (checked here, the
+//! thesis' prefactors confirmed; the factors of 1 - k are ERRATA 14's):
+//!   Eq. 5.20: F_T1* = (1 - k) (2 pi)^2 alpha_PB^2 lambda^2 V0,
+//!   Eq. 5.21: F_T2* = sqrt 2 pi^(5/4) alpha_PB lambda |W|^(-1/4) V0^(1/2) / sqrt(1 - k)
+//! (pi sqrt(2 pi) (1/pi)^(1/4) = sqrt 2 pi^(5/4)).
 
 /// phi(z) = sqrt(1 + z^-2) - 1/z, written without cancellation.
 fn phi(z: f64) -> f64 {
@@ -43,9 +53,50 @@ pub fn friction(u: f64, k: f64) -> f64 {
     (x - 1.0) * (x + 1.0) / x
 }
 
+/// u = v/v0 of a rolling point (see the module header).
+fn rolling_u(alpha_pb: f64, lambda: f64, w: f64, v0: f64) -> f64 {
+    let a0_over_beta = 2.0 * (w.abs() / std::f64::consts::PI).sqrt();
+    (2.0 * std::f64::consts::PI * alpha_pb * lambda).powi(2) * v0 * a0_over_beta
+}
+
+/// The Persson-Brener rolling friction F_T* = (beta/a0) f_T/dgamma at V0 (Eqs. 5.10-5.13 in
+/// the units of Eq. 5.6).
+pub fn rolling_friction(alpha_pb: f64, lambda: f64, w: f64, k: f64, v0: f64) -> f64 {
+    let beta_over_a0 = 0.5 * (std::f64::consts::PI / w.abs()).sqrt();
+    beta_over_a0 * friction(rolling_u(alpha_pb, lambda, w, v0), k)
+}
+
+/// The low-speed law, Eq. 5.20 (with the factor 1 - k): F_T* = (1-k) (2 pi)^2 alpha^2 lambda^2 V0.
+pub fn rolling_linear(alpha_pb: f64, lambda: f64, k: f64, v0: f64) -> f64 {
+    (1.0 - k) * (2.0 * std::f64::consts::PI * alpha_pb * lambda).powi(2) * v0
+}
+
+/// The intermediate law, Eq. 5.21 (with 1/sqrt(1 - k)):
+/// F_T* = sqrt 2 pi^(5/4) alpha lambda |W|^(-1/4) V0^(1/2) / sqrt(1 - k).
+pub fn rolling_sqrt(alpha_pb: f64, lambda: f64, w: f64, k: f64, v0: f64) -> f64 {
+    2f64.sqrt() * std::f64::consts::PI.powf(1.25) * alpha_pb * lambda * w.abs().powf(-0.25) * v0.sqrt()
+        / (1.0 - k).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rolling_laws_are_the_limits_of_the_rolling_friction() {
+        use std::f64::consts::PI;
+        let (alpha, lambda, w, k) = (0.3, 2.0, 0.1, 1e-4);
+        // u = 1e-4: the linear law; u = 1e3 << (1-k)/k^2: the square-root law.
+        let v_low = 1e-4 / rolling_u(alpha, lambda, w, 1.0);
+        let v_mid = 1e3 / rolling_u(alpha, lambda, w, 1.0);
+        let low = rolling_friction(alpha, lambda, w, k, v_low) / rolling_linear(alpha, lambda, k, v_low);
+        let mid = rolling_friction(alpha, lambda, w, k, v_mid) / rolling_sqrt(alpha, lambda, w, k, v_mid);
+        assert!((low - 1.0).abs() < 1e-3 && (mid - 1.0).abs() < 0.01, "{low} {mid}");
+        // The thesis' printed prefactors: (2 pi)^2 and pi sqrt(2 pi) (1/pi)^(1/4) (k -> 0).
+        assert!((rolling_linear(1.0, 1.0, 0.0, 1.0) - 4.0 * PI * PI).abs() < 1e-12);
+        let printed = PI * (2.0 * PI).sqrt() * (1.0 / PI).powf(0.25);
+        assert!((rolling_sqrt(1.0, 1.0, 1.0, 0.0, 1.0) - printed).abs() < 1e-12);
+    }
 
     #[test]
     fn low_speed_slope_one_with_prefactor_one_minus_k() {
