@@ -56,11 +56,12 @@ struct Regime {
 /// Calibrates alpha_PB on each (lambda, W, k) curve, per regime: alpha is the geometric mean
 /// of the alphas that make the law pass through each point of the regime, with the standard
 /// error of that mean; the free power-law fit over the same points is reported beside it.
+/// A regime with fewer than `min_points` points has no row.
 pub struct PbCalibrate;
 
 impl Kind for PbCalibrate {
     const NAME: &'static str = "pb.calibrate";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Persson-Brener prefactor alpha (Eq. 5.18) fitted to F_T*(V0) curves: linear (Eq. 5.20) and square-root (Eq. 5.21) regimes";
     type Params = CalibrateParams;
@@ -125,6 +126,9 @@ impl Kind for PbCalibrate {
             };
             for r in [regime("linear", 1.0, p.linear_range), regime("sqrt", 0.5, p.sqrt_range)] {
                 let n = r.alphas.len();
+                if n < p.min_points {
+                    continue; // the regime is not there (e.g. no square-root regime at small lambda)
+                }
                 let logs: Vec<f64> = r.alphas.iter().map(|a| a.ln()).collect();
                 let mean = if n > 0 { logs.iter().sum::<f64>() / n as f64 } else { 0.0 };
                 let sd = if n > 1 {
@@ -155,8 +159,7 @@ impl Kind for PbCalibrate {
                     .with_f64("slope_std_error", vec![0.0])
                     .with_f64("prefactor", vec![prefactor])
                     .with_f64("fitted_slope", vec![r.fit.map_or(0.0, |f| f.slope)])
-                    .with_f64("fitted_slope_std_error", vec![r.fit.map_or(0.0, |f| f.slope_std_error)])
-                    .with("found", ColumnData::Bool(vec![n >= p.min_points]));
+                    .with_f64("fitted_slope_std_error", vec![r.fit.map_or(0.0, |f| f.slope_std_error)]);
                 out.append(&row)?;
             }
         }
