@@ -25,6 +25,7 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("bem.sweep", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0})),
         ("bem.profile", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 40, "half_length": 5.0})),
         ("bem.pulloff", json!({"lambda": 1.0, "k": 0.1, "V": 1.0, "n": 64})),
+        ("pb.calibrate", json!({"from": "rolling"})),
         ("util.fail", json!({"message": "m", "x": 2})),
         (
             "bem.maxima",
@@ -58,7 +59,16 @@ fn outputs_change_only_with_a_version_bump() {
         .with_f64("a", (0..3 * n).map(|i| [0.1, 1.0, 10.0][i % 3]).collect())
         .with_f64("b", (0..3 * n).map(|i| 1.0 + (i / 3) as f64 + [0.0, 0.5, 0.2][i % 3]).collect())
         .with_f64("g", (0..3 * n).map(|i| (i / 3) as f64).collect());
-    let inputs = Inputs { tables: BTreeMap::from([("input".to_string(), &input)]) };
+    // A rolling curve for pb.calibrate: F = V0 below 1, sqrt(V0) above (2 points per decade).
+    let v0: Vec<f64> = (0..13).map(|i| 10f64.powf(-3.0 + 0.5 * i as f64)).collect();
+    let rolling = Table::new()
+        .with_f64("lambda", vec![3.0; 13])
+        .with_f64("W", vec![0.1; 13])
+        .with_f64("k", vec![0.001; 13])
+        .with_f64("V0", v0.clone())
+        .with_f64("F_T", v0.iter().map(|&v| if v < 1.0 { v } else { v.sqrt() }).collect())
+        .with("converged", repro::pipeline::table::ColumnData::Bool(vec![true; 13]));
+    let inputs = Inputs { tables: BTreeMap::from([("input".to_string(), &input), ("rolling".to_string(), &rolling)]) };
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kind_fingerprints.json");
     let recorded: BTreeMap<String, String> =
         std::fs::read(&path).ok().and_then(|b| serde_json::from_slice(&b).ok()).unwrap_or_default();
