@@ -128,3 +128,19 @@ fn tensile_loads_are_solved_on_the_stable_branch() {
     assert!(!beyond.converged && beyond.residual.is_finite() && beyond.residual > 0.1, "{}", beyond.residual);
     assert!(beyond.friction().mu_star.is_finite());
 }
+
+#[test]
+fn pull_off_at_k_0_001_tends_to_its_relaxed_and_instantaneous_limits() {
+    // Chapter 5's material (k = 0.001, lambda = 3). Very low speed: the relaxed line contact
+    // (-1.7272; JKR -1.7437). Very high speed: the instantaneous half-plane, i.e. the relaxed
+    // problem at lambda k^(2/3) = 0.03 (deep in the rigid regime, not JKR) with loads scaled
+    // by k^(-1/3) = 10. Measured: -4.20391 vs 10 x -0.42031.
+    let k: f64 = 0.001;
+    let slow = pull_off_at(3.0, k, 1e-6, None);
+    assert!((slow / jkr_pull_off() - 1.0).abs() < 0.015, "{slow}");
+    let fast = pull_off_at(3.0, k, 1e4, None);
+    let relaxed = pull_off_at(3.0 * k.powf(2.0 / 3.0), k, 1e-6, None) / k.cbrt();
+    assert!((fast / relaxed - 1.0).abs() < 2e-3, "{fast} vs {relaxed}");
+    // In between, viscoelastic losses at the trailing edge raise the pull-off 2.4-fold.
+    assert!(fast < 2.3 * slow, "{fast} vs {slow}");
+}
