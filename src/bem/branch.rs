@@ -34,7 +34,7 @@ fn on_branch(from: &Solution, to: &Solution) -> bool {
     }
 }
 
-/// A walk down the branch under approach control.
+/// A walk down the branch by pseudo-arclength in (approach, load).
 struct Walk {
     solver: PathSolver,
     /// The last three accepted states, newest last.

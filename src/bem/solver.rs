@@ -309,7 +309,7 @@ impl<'a> System<'a> {
     }
 
     /// The coefficient of dP_j/dH_j in the last row: the load weight, or minus the mean
-    /// influence of element j on the two edge nodes (approach control).
+    /// influence of element j on the two edge nodes (path control: approach and load).
     fn edge_row(&self, j: usize) -> f64 {
         let n = self.op.mesh.n;
         match self.control {
@@ -472,7 +472,7 @@ impl Preconditioner {
 }
 
 /// Newton's method from `h0`, `delta0`. Returns the solution (converged or not).
-/// Under approach control the solution's load is the one carried, at the same speed V.
+/// Under path control the solution's load is the one carried, at the same speed V.
 fn newton(
     op: &Operator,
     params: &Params,
@@ -643,7 +643,7 @@ const LAMBDA_START: f64 = 0.3;
 /// W = 0.1.
 ///
 /// A tensile load (W < 0) is reached from the same point at load max(|W|, 0.1) by walking
-/// down the branch under approach control (`branch::descend_to_load`), so that the state
+/// down the branch by pseudo-arclength (`branch::descend_to_load`), so that the state
 /// is the stable one; beyond the pull-off the result is marked not converged.
 pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     if params.w < 0.0 {

@@ -17,8 +17,8 @@ pub struct BemParams {
     pub lambda: f64,
     /// Dimensionless load W (Eq. 4.6), nonzero (sweepable). Negative: a tensile load (the
     /// cylinder beneath the substrate, Chapter 5), reached on the stable branch by walking
-    /// down from |W| under approach control; beyond the pull-off the point is reported as
-    /// not converged.
+    /// down from |W| by pseudo-arclength continuation; beyond the pull-off the point is
+    /// reported as not converged.
     pub W: f64,
     /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
     pub k: f64,
