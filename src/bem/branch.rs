@@ -21,6 +21,7 @@
 
 use super::solver::{Control, PathSolver, Solution};
 use super::traction;
+use crate::numerics::roots::golden_section_max;
 
 /// Largest relative change of the adhered half-width between accepted neighbours.
 const BRANCH_JUMP: f64 = 0.2;
@@ -183,37 +184,24 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
     let along = |q: [f64; 2]| t[0] * (q[0] - c[0]) + t[1] * (q[1] - c[1]);
     let (lo, hi) = (along(point(&before)), along(point(&after)));
     let mut best = centre.clone();
-    let eval = |s: f64, walk: &mut Walk, best: &mut Solution| -> f64 {
-        let r = walk.solve(arc(t, c, s), &centre.h, centre.delta);
-        if r.converged && on_branch(&centre, &r) {
+    let step0 = walk.step0;
+    // Maximise -W; unconverged or off-branch solves count as -inf.
+    golden_section_max(
+        |s| {
+            let r = walk.solve(arc(t, c, s), &centre.h, centre.delta);
+            if !(r.converged && on_branch(&centre, &r)) {
+                return f64::NEG_INFINITY;
+            }
             let w = r.load();
             if w < best.load() {
-                *best = r;
+                best = r;
             }
-            w
-        } else {
-            f64::INFINITY
-        }
-    };
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (lo, hi);
-    let mut x1 = b - g * (b - a);
-    let mut x2 = a + g * (b - a);
-    let mut f1 = eval(x1, &mut walk, &mut best);
-    let mut f2 = eval(x2, &mut walk, &mut best);
-    while b - a > tol * walk.step0 {
-        if f1 > f2 {
-            a = x1;
-            (x1, f1) = (x2, f2);
-            x2 = a + g * (b - a);
-            f2 = eval(x2, &mut walk, &mut best);
-        } else {
-            b = x2;
-            (x2, f2) = (x1, f1);
-            x1 = b - g * (b - a);
-            f1 = eval(x1, &mut walk, &mut best);
-        }
-    }
+            -w
+        },
+        lo,
+        hi,
+        tol * step0,
+    );
     PullOff {
         load: best.load(),
         solution: best,

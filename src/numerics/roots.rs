@@ -40,7 +40,14 @@ pub fn maximize<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, n_grid: usize, tol: f64
     let xs: Vec<f64> = (0..n).map(|i| a + (b - a) * i as f64 / (n - 1) as f64).collect();
     let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
     let best = (0..n).max_by(|&i, &j| fs[i].total_cmp(&fs[j])).unwrap();
-    let (mut lo, mut hi) = (xs[best.saturating_sub(1)], xs[(best + 1).min(n - 1)]);
+    let refined = golden_section_max(&f, xs[best.saturating_sub(1)], xs[(best + 1).min(n - 1)], tol);
+    [refined, (xs[best], fs[best])].into_iter().max_by(|p, q| p.1.total_cmp(&q.1)).unwrap()
+}
+
+/// Golden-section search for the maximum of a unimodal f on [lo, hi], to a bracket of
+/// width <= tol. f may carry state (warm starts, counters). Returns the better of the two
+/// last interior points, (x, f(x)).
+pub fn golden_section_max<F: FnMut(f64) -> f64>(mut f: F, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let mut x1 = hi - g * (hi - lo);
     let mut x2 = lo + g * (hi - lo);
@@ -48,20 +55,21 @@ pub fn maximize<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, n_grid: usize, tol: f64
     while hi - lo > tol {
         if f1 < f2 {
             lo = x1;
-            x1 = x2;
-            f1 = f2;
+            (x1, f1) = (x2, f2);
             x2 = lo + g * (hi - lo);
             f2 = f(x2);
         } else {
             hi = x2;
-            x2 = x1;
-            f2 = f1;
+            (x2, f2) = (x1, f1);
             x1 = hi - g * (hi - lo);
             f1 = f(x1);
         }
     }
-    let candidates = [(x1, f1), (x2, f2), (xs[best], fs[best])];
-    candidates.into_iter().max_by(|p, q| p.1.total_cmp(&q.1)).unwrap()
+    if f1 >= f2 {
+        (x1, f1)
+    } else {
+        (x2, f2)
+    }
 }
 
 #[cfg(test)]

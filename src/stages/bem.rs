@@ -1,7 +1,7 @@
 //! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
 //! (`bem.sweep`) and the fields of one point (`bem.profile`).
 
-use super::check;
+use super::{check, finite};
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -79,22 +79,13 @@ impl BemParams {
             e.push(FieldError::new("W", format!("must be nonzero and finite, got {}", self.W)));
         }
         check::in_open(&mut e, "k", self.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
-        if !(self.V0 >= 0.0 && self.V0.is_finite()) {
-            e.push(FieldError::new("V0", format!("must be zero or positive, got {}", self.V0)));
-        }
-        for (field, value) in [("n", self.n), ("n_max", self.n_max)] {
-            if let Some(n) = value {
-                if !(16..=32_000).contains(&n) {
-                    e.push(FieldError::new(field, format!("must lie in 16..=32000, got {n}")));
-                }
-            }
-        }
+        check::non_negative(&mut e, "V0", self.V0);
+        check::elements(&mut e, "n", self.n);
+        check::elements(&mut e, "n_max", self.n_max);
         if let Some(l) = self.half_length {
             check::positive(&mut e, "half_length", l);
         }
-        if let Some(t) = self.rel_tol {
-            check::in_open(&mut e, "rel_tol", t, 0.0, 1.0, "the requested accuracy");
-        }
+        check::rel_tol(&mut e, "rel_tol", self.rel_tol);
         e
     }
 
@@ -104,15 +95,6 @@ impl BemParams {
             .with_f64("W", vec![self.W; rows])
             .with_f64("k", vec![self.k; rows])
             .with_f64("V0", vec![self.V0; rows])
-    }
-}
-
-/// A value for a table: the value when finite, else 0 (the row says `converged = false`).
-fn finite(x: f64) -> f64 {
-    if x.is_finite() {
-        x
-    } else {
-        0.0
     }
 }
 

@@ -24,6 +24,16 @@ pub fn registry() -> Registry {
     r
 }
 
+/// A value for a table: the value when finite, else 0 (tables never hold NaN or infinity;
+/// the row's `converged` column says whether to trust it).
+pub(crate) fn finite(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        0.0
+    }
+}
+
 /// Shared parameter checks, returning the errors for one field.
 pub(crate) mod check {
     use crate::pipeline::kind::FieldError;
@@ -37,6 +47,28 @@ pub(crate) mod check {
     pub fn in_open(errs: &mut Vec<FieldError>, name: &str, x: f64, lo: f64, hi: f64, what: &str) {
         if !(x > lo && x < hi) {
             errs.push(FieldError::new(name, format!("{what} must lie in ({lo}, {hi}), got {x}")));
+        }
+    }
+
+    pub fn non_negative(errs: &mut Vec<FieldError>, name: &str, x: f64) {
+        if !(x >= 0.0 && x.is_finite()) {
+            errs.push(FieldError::new(name, format!("must be zero or positive, got {x}")));
+        }
+    }
+
+    /// An optional number of boundary elements: 16..=32000.
+    pub fn elements(errs: &mut Vec<FieldError>, name: &str, n: Option<usize>) {
+        if let Some(n) = n {
+            if !(16..=32_000).contains(&n) {
+                errs.push(FieldError::new(name, format!("must lie in 16..=32000, got {n}")));
+            }
+        }
+    }
+
+    /// An optional requested relative accuracy in (0, 1).
+    pub fn rel_tol(errs: &mut Vec<FieldError>, name: &str, t: Option<f64>) {
+        if let Some(t) = t {
+            in_open(errs, name, t, 0.0, 1.0, "the requested accuracy");
         }
     }
 

@@ -1,7 +1,7 @@
 //! Stage kind `bem.pulloff`: the pull-off load of the Chapter 4/5 model at one speed
 //! (`bem::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
 
-use super::check;
+use super::{check, finite};
 use crate::bem::branch::{pull_off, PullOff};
 use crate::bem::solver::{self, Mesh, Params};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -51,17 +51,9 @@ impl Kind for BemPullOff {
         let mut e = Vec::new();
         check::positive(&mut e, "lambda", p.lambda);
         check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
-        if !(p.V >= 0.0 && p.V.is_finite()) {
-            e.push(FieldError::new("V", format!("must be zero or positive, got {}", p.V)));
-        }
-        if let Some(n) = p.n {
-            if !(16..=32_000).contains(&n) {
-                e.push(FieldError::new("n", format!("must lie in 16..=32000, got {n}")));
-            }
-        }
-        if let Some(t) = p.rel_tol {
-            check::in_open(&mut e, "rel_tol", t, 0.0, 1.0, "the requested accuracy");
-        }
+        check::non_negative(&mut e, "V", p.V);
+        check::elements(&mut e, "n", p.n);
+        check::rel_tol(&mut e, "rel_tol", p.rel_tol);
         e
     }
 
@@ -108,19 +100,18 @@ impl Kind for BemPullOff {
             None => (0.0, 0.0, (0.0, 0.0), 0.0, 0, start_iterations),
         };
         let v0 = if load != 0.0 { p.V / Params { w: load, ..start }.a0() } else { 0.0 };
-        let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
         let t = Table::new()
             .with_f64("lambda", vec![p.lambda])
             .with_f64("k", vec![p.k])
             .with_f64("V", vec![p.V])
-            .with_f64("V0", vec![fin(v0)])
-            .with_f64("W_pulloff", vec![fin(load)])
-            .with_f64("A", vec![fin(width)])
-            .with_f64("two_A", vec![fin(2.0 * width)])
-            .with_f64("x_lead", vec![fin(edges.0)])
-            .with_f64("x_trail", vec![fin(edges.1)])
-            .with_f64("mu_star", vec![fin(mu)])
-            .with_f64("F_T", vec![fin(mu * load.abs())])
+            .with_f64("V0", vec![finite(v0)])
+            .with_f64("W_pulloff", vec![finite(load)])
+            .with_f64("A", vec![finite(width)])
+            .with_f64("two_A", vec![finite(2.0 * width)])
+            .with_f64("x_lead", vec![finite(edges.0)])
+            .with_f64("x_trail", vec![finite(edges.1)])
+            .with_f64("mu_star", vec![finite(mu)])
+            .with_f64("F_T", vec![finite(mu * load.abs())])
             .with("converged", ColumnData::Bool(vec![converged && load.is_finite()]))
             .with("evaluations", ColumnData::I64(vec![evaluations as i64]))
             .with("iterations", ColumnData::I64(vec![iterations as i64]))

@@ -98,6 +98,14 @@ pub struct PullOffParams {
     pub lambda: f64,
 }
 
+impl PullOffParams {
+    fn validate(&self) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "lambda", self.lambda);
+        e
+    }
+}
+
 /// Pull-off load of the Maugis–Dugdale sphere under load control.
 pub struct MaugisPullOff;
 
@@ -109,9 +117,7 @@ impl Kind for MaugisPullOff {
     type Params = PullOffParams;
 
     fn validate(p: &PullOffParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check::positive(&mut e, "lambda", p.lambda);
-        e
+        p.validate()
     }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
@@ -141,9 +147,7 @@ impl Kind for LinePullOff {
     type Params = PullOffParams;
 
     fn validate(p: &PullOffParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check::positive(&mut e, "lambda", p.lambda);
-        e
+        p.validate()
     }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
