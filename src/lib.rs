@@ -8,5 +8,6 @@
 pub mod bem;
 pub mod numerics;
 pub mod pipeline;
+pub mod rheology;
 pub mod stages;
 pub mod theory;

@@ -2,7 +2,9 @@
 
 use repro::bem::solver::{solve, solve_to_tolerance, solve_with_estimate, starting_mesh, Mesh, Params};
 
-const POINT: Params = Params { lambda: 1.0, w: 1.0, k: 0.1, v0: 1.0 };
+fn point() -> Params {
+    Params::sls(1.0, 1.0, 0.1, 1.0)
+}
 
 fn mu(params: &Params, mesh: Mesh) -> f64 {
     let s = solve(params, mesh);
@@ -13,7 +15,7 @@ fn mu(params: &Params, mesh: Mesh) -> f64 {
 #[test]
 fn friction_converges_at_second_order_in_the_element_size() {
     // Measured (release build): 2.08518, 2.08698, 2.08745, 2.08757 for n = 150..1200.
-    let m: Vec<f64> = [150, 300, 600].iter().map(|&n| mu(&POINT, Mesh { n, half_length: 6.0 })).collect();
+    let m: Vec<f64> = [150, 300, 600].iter().map(|&n| mu(&point(), Mesh { n, half_length: 6.0 })).collect();
     let (d1, d2) = ((m[1] - m[0]).abs(), (m[2] - m[1]).abs());
     assert!(d1 / d2 > 3.0, "halving the element size should divide the change by about 4: {m:?}");
     assert!(d2 < 5e-4 * m[2], "{m:?}");
@@ -24,21 +26,21 @@ fn friction_converges_at_second_order_in_the_element_size() {
 fn friction_converges_in_the_domain_length() {
     // Same element size, growing domain: the Lennard-Jones tail outside matters less.
     let m: Vec<f64> =
-        [4.0, 8.0, 12.0].iter().map(|&l| mu(&POINT, Mesh { n: (50.0 * l) as usize, half_length: l })).collect();
+        [4.0, 8.0, 12.0].iter().map(|&l| mu(&point(), Mesh { n: (50.0 * l) as usize, half_length: l })).collect();
     let (d1, d2) = ((m[1] - m[0]).abs(), (m[2] - m[1]).abs());
     assert!(d2 < 0.1 * d1 && d2 < 2e-4 * m[2], "{m:?}");
 }
 
 #[test]
 fn the_error_estimate_brackets_the_true_error() {
-    let reference = mu(&POINT, Mesh { n: 1200, half_length: 6.0 });
-    let (s, estimate) = solve_with_estimate(&POINT, Mesh { n: 300, half_length: 6.0 });
+    let reference = mu(&point(), Mesh { n: 1200, half_length: 6.0 });
+    let (s, estimate) = solve_with_estimate(&point(), Mesh { n: 300, half_length: 6.0 });
     let error = (s.friction().mu_star - reference).abs();
     assert!(error < 3.0 * estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
     // The default resolution: the starting mesh for 1e-3, refined until the estimate meets
     // it; the answer then lies within that of the converged value (2.08757 on L = 6).
-    let m = starting_mesh(&POINT, 1e-3);
-    let (s, estimate) = solve_to_tolerance(&POINT, m, 1e-3, 16_000);
+    let m = starting_mesh(&point(), 1e-3);
+    let (s, estimate) = solve_to_tolerance(&point(), m, 1e-3, 16_000);
     let mu = s.friction().mu_star;
     assert!(estimate <= 1e-3 * mu, "{m:?}: {estimate}");
     assert!((mu - 2.08757).abs() < 1e-3 * mu, "{m:?}: {mu}");
@@ -65,7 +67,7 @@ fn extreme_parameters_give_a_result_or_an_explicit_failure_never_nan() {
         (0.1, 0.01, 0.5, 1e-3),
     ];
     for (lambda, w, k, v0) in cases {
-        let p = Params { lambda, w, k, v0 };
+        let p = Params::sls(lambda, w, k, v0);
         let mesh = if w > 100.0 { Mesh { n: 160, half_length: 80.0 } } else { mesh };
         let s = solve(&p, mesh);
         if w == -1.9 {
@@ -90,14 +92,14 @@ fn extreme_parameters_give_a_result_or_an_explicit_failure_never_nan() {
 fn the_mesh_is_refined_until_the_requested_accuracy_is_met() {
     // From n = 150: the estimate is 2.9e-4 relative at n = 300, 7.5e-5 at n = 600
     // (measured sequence 2.08518, 2.08698, 2.08745, 2.08757): asking 1e-4 stops at n = 600.
-    let (s, estimate) = solve_to_tolerance(&POINT, Mesh { n: 150, half_length: 6.0 }, 1e-4, 6000);
+    let (s, estimate) = solve_to_tolerance(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-4, 6000);
     let mu = s.friction().mu_star;
     assert_eq!(s.mesh.n, 600);
     assert!(estimate <= 1e-4 * mu);
     let reference = 2.08757;
     assert!((mu - reference).abs() < 2.0 * estimate + 2e-5, "{mu} vs {reference}, estimate {estimate}");
     // A cap on n ends the refinement and reports the estimate reached.
-    let (capped, est) = solve_to_tolerance(&POINT, Mesh { n: 150, half_length: 6.0 }, 1e-6, 300);
+    let (capped, est) = solve_to_tolerance(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-6, 300);
     assert_eq!(capped.mesh.n, 300);
     assert!(est > 1e-6 * capped.friction().mu_star);
 }

@@ -11,7 +11,7 @@ use repro::bem::solver::{jkr_half_width, jkr_pull_off, solve, starting_mesh, Mes
 use repro::theory::line_contact::{lj_rigid_pull_off_coefficient, maugis_dugdale_line_pull_off};
 
 fn solved(lambda: f64, w: f64, k: f64, v0: f64, mesh: Mesh) -> Solution {
-    let s = solve(&Params { lambda, w, k, v0 }, mesh);
+    let s = solve(&Params::sls(lambda, w, k, v0), mesh);
     assert!(s.converged, "lambda {lambda} W {w} V0 {v0}: residual {}", s.residual);
     s
 }
@@ -46,7 +46,7 @@ fn high_speed_is_the_instantaneous_half_plane() {
 // ---- Pull-off, walked under approach control (`bem::branch`). ----
 
 fn pull_off_at(lambda: f64, k: f64, v0: f64, n: Option<usize>) -> f64 {
-    let p = Params { lambda, w: 0.1, k, v0 };
+    let p = Params::sls(lambda, 0.1, k, v0);
     let mut mesh = starting_mesh(&p, 1e-3);
     if let Some(n) = n {
         mesh.n = n;
@@ -110,7 +110,7 @@ fn pull_off_at_high_speed_is_that_of_the_instantaneous_half_plane() {
 
 #[test]
 fn tensile_loads_are_solved_on_the_stable_branch() {
-    let mesh = |w: f64| starting_mesh(&Params { lambda: 3.0, w, k: 0.001, v0: 1.0 }, 1e-3);
+    let mesh = |w: f64| starting_mesh(&Params::sls(3.0, w, 0.001, 1.0), 1e-3);
     let up = solved(3.0, 0.1, 0.001, 1.0, mesh(0.1));
     let down = solved(3.0, -0.1, 0.001, 1.0, mesh(-0.1));
     assert!((down.load() + 0.1).abs() < 1e-8);
@@ -124,7 +124,7 @@ fn tensile_loads_are_solved_on_the_stable_branch() {
     let po = pull_off(&up, 1e-3);
     assert!(down.adhered_half_width().unwrap() > po.solution.adhered_half_width().unwrap() * 1.1);
     // Beyond the pull-off: reported as not converged, with finite fields.
-    let beyond = solve(&Params { lambda: 1.0, w: -2.5, k: 0.1, v0: 1.0 }, Mesh { n: 200, half_length: 5.4 });
+    let beyond = solve(&Params::sls(1.0, -2.5, 0.1, 1.0), Mesh { n: 200, half_length: 5.4 });
     assert!(!beyond.converged && beyond.residual.is_finite() && beyond.residual > 0.1, "{}", beyond.residual);
     assert!(beyond.friction().mu_star.is_finite());
 }

@@ -33,7 +33,7 @@ pub fn max_over_speed(
     let log: RefCell<Vec<(f64, Friction, bool, f64)>> = RefCell::new(Vec::new());
     let eval = |lv: f64| {
         let v0 = 10f64.powf(lv);
-        let (s, estimate) = solve(&Params { v0, ..*base });
+        let (s, estimate) = solve(&Params { v0, ..base.clone() });
         let f = s.friction();
         log.borrow_mut().push((v0, f, s.converged, estimate));
         if s.converged && f.mu_star.is_finite() {
@@ -59,7 +59,7 @@ mod tests {
     fn adhesionless_maximum_at_k_0_1() {
         // At W = 100 adhesion is negligible: max mu* = 0.483 near V0 = 1.3 (the thesis:
         // about 0.48; Persson's approximation 0.479 at V0 = 1.2).
-        let base = Params { lambda: 0.5, w: 100.0, k: 0.1, v0: 1.0 };
+        let base = Params::sls(0.5, 100.0, 0.1, 1.0);
         let mesh = crate::bem::solver::Mesh { n: 300, half_length: 28.0 };
         let m = max_over_speed(&base, 0.01, 100.0, 9, 0.01, |p| crate::bem::solver::solve_with_estimate(p, mesh));
         assert!(m.all_converged);

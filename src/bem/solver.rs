@@ -22,14 +22,15 @@
 
 use super::kernel;
 use super::traction::{self, ALPHA};
+use crate::rheology::Spectrum;
 use crate::numerics::gmres::gmres;
 use crate::numerics::toeplitz::Toeplitz;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 use std::f64::consts::PI;
 
-/// The four governing parameters (Eq. 4.17).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The four governing parameters (Eq. 4.17), and the shape of the creep function.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Params {
     /// Maugis-Tabor parameter lambda (Eq. 4.9).
     pub lambda: f64,
@@ -39,9 +40,15 @@ pub struct Params {
     pub k: f64,
     /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18).
     pub v0: f64,
+    /// Retardation spectrum (times in units of tau); the SLS by default.
+    pub spectrum: Spectrum,
 }
 
 impl Params {
+    /// A point on the standard linear solid.
+    pub fn sls(lambda: f64, w: f64, k: f64, v0: f64) -> Params {
+        Params { lambda, w, k, v0, spectrum: Spectrum::sls() }
+    }
     /// The Hertz half-width a0/beta = 2 sqrt(W/pi) (relaxed modulus).
     pub fn a0(&self) -> f64 {
         2.0 * (self.w.abs() / PI).sqrt()
@@ -52,13 +59,13 @@ impl Params {
     }
     /// The same point at speed V = v tau/beta.
     pub fn with_v(&self, v: f64) -> Params {
-        Params { v0: v / self.a0(), ..*self }
+        Params { v0: v / self.a0(), ..self.clone() }
     }
     /// The same speed V at another load (V0 is relative to the Hertz width of |W|; at
     /// W = 0 it is reported as infinite).
     pub fn with_load(&self, w: f64) -> Params {
         let v = self.v();
-        let p = Params { w, ..*self };
+        let p = Params { w, ..self.clone() };
         if w == 0.0 {
             Params { v0: if v == 0.0 { 0.0 } else { f64::INFINITY }, ..p }
         } else {
@@ -240,14 +247,14 @@ struct Operator {
 }
 
 impl Operator {
-    fn new(mesh: Mesh, lambda: f64, k: f64, v: f64) -> Operator {
+    fn new(mesh: Mesh, lambda: f64, k: f64, spectrum: &Spectrum, v: f64) -> Operator {
         let n = mesh.n;
         let a = mesh.a();
         let s = 2.0 * lambda / PI;
-        let nodes: Vec<f64> = kernel::toeplitz_coefficients(n, a, v, k).into_iter().map(|c| c * s).collect();
+        let nodes: Vec<f64> = kernel::toeplitz_coefficients(n, a, v, k, spectrum).into_iter().map(|c| c * s).collect();
         // Edge e sits at X_0 - A + 2A e; offset from element m: 2A (e - m) - A.
         let edges: Vec<f64> =
-            (0..2 * n).map(|idx| s * kernel::strip(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k)).collect();
+            (0..2 * n).map(|idx| s * kernel::strip_spectrum(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k, spectrum)).collect();
         let nodes_fft = Toeplitz::new(&nodes, n, n);
         let edges_fft = Toeplitz::new(&edges, n, n + 1);
         Operator { mesh, lambda, nodes, nodes_fft, edges_fft }
@@ -527,7 +534,7 @@ fn newton(
     let u = op.displacement(&ev.p);
     let u_edges = op.edge_displacement(&ev.p);
     let params = match control {
-        Control::Load(_) => *params,
+        Control::Load(_) => params.clone(),
         Control::Path { .. } => params.with_load(lambda * 2.0 * op.mesh.a() * ev.p.iter().sum::<f64>()),
     };
     Solution {
@@ -649,7 +656,7 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     if params.w < 0.0 {
         let start = solve(&params.with_load(params.w.abs().max(0.1)), mesh);
         let mut s = if start.converged { super::branch::descend_to_load(&start, params.w) } else { start.clone() };
-        s.params = *params;
+        s.params = params.clone();
         s.iterations += start.iterations;
         s.factorizations += start.factorizations;
         return s;
@@ -667,8 +674,8 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
 
 fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Preconditioner) -> Solution {
     let lam0 = params.lambda.min(LAMBDA_START);
-    let at = |lambda: f64, v: f64| Params { lambda, ..*params }.with_v(v);
-    let op0 = Operator::new(mesh, lam0, params.k, 0.0);
+    let at = |lambda: f64, v: f64| Params { lambda, ..params.clone() }.with_v(v);
+    let op0 = Operator::new(mesh, lam0, params.k, &params.spectrum, 0.0);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
     let first = newton(&op0, &at(lam0, 0.0), Control::Load(params.w), h0, d0, 100, pre);
     let mut iterations = first.iterations;
@@ -683,27 +690,27 @@ fn solve_along(params: &Params, mesh: Mesh, speed_first: bool, pre: &mut Precond
             let lambda = sol.params.lambda;
             let v_start = 1e-3 * mesh.a();
             if v_target <= v_start {
-                let op = Operator::new(mesh, lambda, params.k, v_target);
+                let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v_target);
                 let s = newton(&op, &at(lambda, v_target), Control::Load(params.w), sol.h.clone(), sol.delta, 40, pre);
                 let it = s.iterations;
                 (s, it)
             } else {
                 continue_geometric(v_start, v_target, 4.0, sol, |v, h, delta| {
-                    let op = Operator::new(mesh, lambda, params.k, v);
+                    let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
                     newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
                 })
             }
         } else {
             let v = sol.params.v();
             continue_geometric(lam0, params.lambda, 1.5, sol, |lambda, h, delta| {
-                let op = Operator::new(mesh, lambda, params.k, v);
+                let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
                 newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
             })
         };
         sol = s;
         iterations += it;
     }
-    sol.params = *params;
+    sol.params = params.clone();
     sol.iterations = iterations;
     sol
 }
@@ -720,8 +727,8 @@ pub struct PathSolver {
 impl PathSolver {
     /// The solver at the mesh and parameters of `from` (its speed V is kept at every load).
     pub fn new(from: &Solution) -> PathSolver {
-        let p = from.params;
-        PathSolver { op: Operator::new(from.mesh, p.lambda, p.k, p.v()), params: p, pre: Preconditioner::default() }
+        let p = from.params.clone();
+        PathSolver { op: Operator::new(from.mesh, p.lambda, p.k, &p.spectrum, p.v()), params: p, pre: Preconditioner::default() }
     }
 
     /// The equilibrium under `control` (`Control::Path`), by Newton from the gaps `h0` and
@@ -761,7 +768,7 @@ fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
 /// interpolation of `coarse` (mesh sequencing: the continuation path is walked on the
 /// coarse mesh only); if that fails, by the full continuation on the fine mesh.
 pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
-    let params = coarse.params;
+    let params = coarse.params.clone();
     let xs = &coarse.x;
     let m = xs.len();
     let h: Vec<f64> = (0..mesh.n)
@@ -772,7 +779,7 @@ pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
             coarse.h[j - 1] + t * (coarse.h[j] - coarse.h[j - 1])
         })
         .collect();
-    let op = Operator::new(mesh, params.lambda, params.k, params.v());
+    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
     let mut pre = Preconditioner::default();
     let s = newton(&op, &params, Control::Load(params.w), h, coarse.delta, 40, &mut pre);
     if s.converged {
@@ -827,15 +834,15 @@ mod tests {
         assert!((-max_neg - jkr_pull_off()).abs() < 1e-10);
         assert!(jkr_half_width(-1.8).is_none());
         let a = jkr_half_width(1000.0).unwrap();
-        let hertz = Params { lambda: 1.0, w: 1000.0, k: 0.1, v0: 1.0 }.a0();
+        let hertz = Params::sls(1.0, 1000.0, 0.1, 1.0).a0();
         assert!((a / hertz - 1.0).abs() < 0.03, "{a} {hertz}");
     }
 
     #[test]
     fn jacobian_matches_finite_differences() {
-        let params = Params { lambda: 1.3, w: 0.7, k: 0.1, v0: 1.0 };
+        let params = Params::sls(1.3, 0.7, 0.1, 1.0);
         let mesh = Mesh { n: 40, half_length: 4.0 };
-        let op = Operator::new(mesh, params.lambda, params.k, params.v());
+        let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
         let arc = Control::Path { t_approach: -0.6, t_load: 0.8, value: 0.1 };
         for control in [Control::Load(params.w), Control::approach(0.2), arc] {
             let sys = System::new(&op, control);
@@ -876,11 +883,11 @@ mod tests {
     #[test]
     fn the_active_set_preconditioner_is_exact_without_dropping_and_close_with_it() {
         // A converged state at lambda = 3, W = 0.1: the far-field columns are tiny.
-        let params = Params { lambda: 3.0, w: 0.1, k: 0.1, v0: 1.0 };
+        let params = Params::sls(3.0, 0.1, 0.1, 1.0);
         let mesh = Mesh { n: 600, half_length: 6.0 };
         let s = solve(&params, mesh);
         assert!(s.converged);
-        let op = Operator::new(mesh, params.lambda, params.k, params.v());
+        let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
         let sys = System::new(&op, Control::Load(params.w));
         let ev = sys.eval(&s.h, s.delta);
         let rhs: Vec<f64> = (0..=mesh.n).map(|i| ((i as f64) * 0.37).sin()).collect();
@@ -910,7 +917,7 @@ mod tests {
         // at k = 0.1.
         let mesh = Mesh { n: 400, half_length: 28.0 };
         for (v0, bem_expected) in [(0.1, 0.0858), (1.3, 0.4829), (10.0, 0.1709)] {
-            let params = Params { lambda: 0.5, w: 100.0, k: 0.1, v0 };
+            let params = Params::sls(0.5, 100.0, 0.1, v0);
             let s = solve(&params, mesh);
             assert!(s.converged, "V0 = {v0}: residual {}", s.residual);
             let f = s.friction();
@@ -925,7 +932,7 @@ mod tests {
 
     #[test]
     fn elastic_point_converges_and_carries_its_load() {
-        let params = Params { lambda: 1.0, w: 1.0, k: 0.1, v0: 0.0 };
+        let params = Params::sls(1.0, 1.0, 0.1, 0.0);
         let mesh = Mesh { n: 200, half_length: 6.0 };
         let s = solve(&params, mesh);
         assert!(s.converged, "residual {} after {}", s.residual, s.iterations);

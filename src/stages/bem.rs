@@ -1,6 +1,7 @@
 //! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
 //! (`bem.sweep`) and the fields of one point (`bem.profile`).
 
+use super::material::Material;
 use super::{check, finite};
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -41,11 +42,36 @@ pub struct BemParams {
     /// The largest mesh of the refinement (default 16000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub n_max: Option<usize>,
+    /// Material: the exponent s in [0, 1) of the power-law retardation spectrum
+    /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; tau = tau2 in V0. Default: the
+    /// standard linear solid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub s: Option<f64>,
+    /// Power-law spectrum: tau1/tau2 (default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tau_ratio: Option<f64>,
+    /// Power-law spectrum: bins per decade of its discretisation (default 8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub per_decade: Option<usize>,
+    /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
+    /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prony: Option<Vec<[f64; 2]>>,
 }
 
 impl BemParams {
+    fn material(&self) -> Material<'_> {
+        Material {
+            k: self.k,
+            s: self.s,
+            tau_ratio: self.tau_ratio,
+            per_decade: self.per_decade,
+            prony: self.prony.as_deref(),
+        }
+    }
+
     fn physics(&self) -> Params {
-        Params { lambda: self.lambda, w: self.W, k: self.k, v0: self.V0 }
+        Params { spectrum: self.material().spectrum(), ..Params::sls(self.lambda, self.W, self.k, self.V0) }
     }
 
     fn rel_tol(&self) -> f64 {
@@ -86,15 +112,24 @@ impl BemParams {
             check::positive(&mut e, "half_length", l);
         }
         check::rel_tol(&mut e, "rel_tol", self.rel_tol);
+        self.material().validate(&mut e);
         e
     }
 
+    /// The parameters as columns; a material other than the SLS adds `s` (power law, -1
+    /// otherwise) and a `material` description.
     fn parameter_columns(&self, rows: usize) -> Table {
-        Table::new()
+        let t = Table::new()
             .with_f64("lambda", vec![self.lambda; rows])
             .with_f64("W", vec![self.W; rows])
             .with_f64("k", vec![self.k; rows])
-            .with_f64("V0", vec![self.V0; rows])
+            .with_f64("V0", vec![self.V0; rows]);
+        let m = self.material();
+        if m.is_sls() {
+            t
+        } else {
+            t.with_f64("s", vec![self.s.unwrap_or(-1.0); rows]).with("material", ColumnData::Str(vec![m.describe(); rows]))
+        }
     }
 }
 
@@ -113,7 +148,7 @@ impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
     const VERSION: u32 = 3;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
-    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
     type Params = BemParams;
 
     fn validate(p: &BemParams) -> Vec<FieldError> {
@@ -159,7 +194,7 @@ impl Kind for BemProfile {
     const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
-    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0"];
+    const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
     type Params = BemParams;
 
     fn validate(p: &BemParams) -> Vec<FieldError> {
@@ -241,6 +276,10 @@ impl MaximaParams {
             half_length: self.half_length,
             rel_tol: self.rel_tol,
             n_max: self.n_max,
+            s: None,
+            tau_ratio: None,
+            per_decade: None,
+            prony: None,
         }
     }
 }

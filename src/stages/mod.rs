@@ -4,6 +4,7 @@
 pub mod bem;
 pub mod figure;
 pub mod fit;
+pub mod material;
 pub mod pb;
 pub mod pulloff;
 pub mod theory;

@@ -59,7 +59,7 @@ impl Kind for BemPullOff {
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let start = Params { lambda: p.lambda, w: W_START, k: p.k, v0: 0.0 }.with_v(p.V);
+        let start = Params::sls(p.lambda, W_START, p.k, 0.0).with_v(p.V);
         let rel_tol = p.rel_tol.unwrap_or(solver::DEFAULT_REL_TOL);
         let first = solver::starting_mesh(&start, rel_tol);
         // The search on a mesh of n elements (None if the starting solve fails).
@@ -99,7 +99,7 @@ impl Kind for BemPullOff {
             ),
             None => (0.0, 0.0, (0.0, 0.0), 0.0, 0, start_iterations),
         };
-        let v0 = if load != 0.0 { p.V / Params { w: load, ..start }.a0() } else { 0.0 };
+        let v0 = if load != 0.0 { p.V / Params { w: load, ..start.clone() }.a0() } else { 0.0 };
         let t = Table::new()
             .with_f64("lambda", vec![p.lambda])
             .with_f64("k", vec![p.k])
