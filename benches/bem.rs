@@ -13,7 +13,7 @@ fn main() {
         "lambda", "W", "mesh", "N", "time_s", "mu_star", "rel_error", "estimate", "newton", "lu"
     );
     for (lambda, w) in [(1.0, 1.0), (3.0, 1.0), (1.0, 0.1), (3.0, 0.1), (6.0, 0.1)] {
-        let params = Params { lambda, w, k: 0.1, v0: 1.0 };
+        let params = Params::sls(lambda, w, 0.1, 1.0);
         let half_length = domain_half_length(&params, 1e-3);
         let fine = solve(&params, Mesh { n: 9601, half_length });
         let coarse = solve(&params, Mesh { n: 4801, half_length });
