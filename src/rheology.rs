@@ -70,7 +70,7 @@ impl Spectrum {
             return Err(format!("k = {k}: the modulus ratio must lie in (0, 1)"));
         }
         let relax = Spectrum::retardation(terms)?; // validated, normalised, sorted by time
-        // Rates p_i = 1/rho_i, ascending.
+                                                   // Rates p_i = 1/rho_i, ascending.
         let rates: Vec<(f64, f64)> = relax.terms.iter().rev().map(|&(r, rho)| (r, 1.0 / rho)).collect();
         let f = |s: f64| k + (1.0 - k) * rates.iter().map(|&(r, p)| r * s / (s + p)).sum::<f64>();
         let df = |s: f64| (1.0 - k) * rates.iter().map(|&(r, p)| r * p / ((s + p) * (s + p))).sum::<f64>();
@@ -151,8 +151,7 @@ impl Spectrum {
     /// 1/(1 - i omega t): the imaginary part is positive (loss).
     pub fn compliance(&self, k: f64, omega: f64) -> Complex64 {
         let one = Complex64::new(1.0, 0.0);
-        let sum: Complex64 =
-            self.terms.iter().map(|&(w, t)| w * one / Complex64::new(1.0, -omega * t)).sum();
+        let sum: Complex64 = self.terms.iter().map(|&(w, t)| w * one / Complex64::new(1.0, -omega * t)).sum();
         Complex64::new(k, 0.0) + (1.0 - k) * sum
     }
 }
@@ -187,7 +186,8 @@ mod tests {
         let psi_rate = |t: f64| -(1.0 - k) * relax.iter().map(|&(r, rho)| r / rho * (-t / rho).exp()).sum::<f64>();
         for t in [0.003, 0.5, 7.0, 300.0] {
             let f = |s: f64| j(t - s) * psi_rate(s);
-            let breaks: Vec<f64> = [0.0, 0.01, 0.1, 1.0, 10.0, 100.0, 1e3].iter().copied().filter(|&b| b < t).chain([t]).collect();
+            let breaks: Vec<f64> =
+                [0.0, 0.01, 0.1, 1.0, 10.0, 100.0, 1e3].iter().copied().filter(|&b| b < t).chain([t]).collect();
             let (conv, _) = integrate_panels(&f, &breaks, 1e-12);
             let lhs = j(t) * 1.0 + conv;
             assert!((lhs - 1.0).abs() < 1e-9, "t={t}: {lhs}");

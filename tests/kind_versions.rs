@@ -20,9 +20,13 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("theory.hertz_jkr_pressure", json!({"P_bar": 1.0, "n": 12})),
         ("theory.persson", json!({"inv_k": 10, "V0": 1.3})),
         ("theory.persson_max", json!({"inv_k": 10})),
-        ("theory.persson_brener", json!({"k": 0.01, "V_PB": 30})),
+        // Materials beyond the SLS exercise the spectral code paths (same output for the SLS).
+        ("theory.persson_brener", json!({"k": 0.01, "V_PB": 30, "s": 0.5, "per_decade": 2})),
         ("util.sleep", json!({"x": 1.25})),
-        ("bem.sweep", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0})),
+        (
+            "bem.sweep",
+            json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0, "prony": [[0.5, 0.01], [0.5, 0.1]]}),
+        ),
         ("bem.profile", json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 40, "half_length": 5.0})),
         ("bem.pulloff", json!({"lambda": 1.0, "k": 0.1, "V": 1.0, "n": 64})),
         ("pb.calibrate", json!({"from": "rolling"})),

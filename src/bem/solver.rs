@@ -22,9 +22,9 @@
 
 use super::kernel;
 use super::traction::{self, ALPHA};
-use crate::rheology::Spectrum;
 use crate::numerics::gmres::gmres;
 use crate::numerics::toeplitz::Toeplitz;
+use crate::rheology::Spectrum;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 use std::f64::consts::PI;
@@ -253,8 +253,9 @@ impl Operator {
         let s = 2.0 * lambda / PI;
         let nodes: Vec<f64> = kernel::toeplitz_coefficients(n, a, v, k, spectrum).into_iter().map(|c| c * s).collect();
         // Edge e sits at X_0 - A + 2A e; offset from element m: 2A (e - m) - A.
-        let edges: Vec<f64> =
-            (0..2 * n).map(|idx| s * kernel::strip_spectrum(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k, spectrum)).collect();
+        let edges: Vec<f64> = (0..2 * n)
+            .map(|idx| s * kernel::strip_spectrum(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k, spectrum))
+            .collect();
         let nodes_fft = Toeplitz::new(&nodes, n, n);
         let edges_fft = Toeplitz::new(&edges, n, n + 1);
         Operator { mesh, lambda, nodes, nodes_fft, edges_fft }
@@ -728,7 +729,11 @@ impl PathSolver {
     /// The solver at the mesh and parameters of `from` (its speed V is kept at every load).
     pub fn new(from: &Solution) -> PathSolver {
         let p = from.params.clone();
-        PathSolver { op: Operator::new(from.mesh, p.lambda, p.k, &p.spectrum, p.v()), params: p, pre: Preconditioner::default() }
+        PathSolver {
+            op: Operator::new(from.mesh, p.lambda, p.k, &p.spectrum, p.v()),
+            params: p,
+            pre: Preconditioner::default(),
+        }
     }
 
     /// The equilibrium under `control` (`Control::Path`), by Newton from the gaps `h0` and

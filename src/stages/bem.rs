@@ -128,7 +128,8 @@ impl BemParams {
         if m.is_sls() {
             t
         } else {
-            t.with_f64("s", vec![self.s.unwrap_or(-1.0); rows]).with("material", ColumnData::Str(vec![m.describe(); rows]))
+            t.with_f64("s", vec![self.s.unwrap_or(-1.0); rows])
+                .with("material", ColumnData::Str(vec![m.describe(); rows]))
         }
     }
 }

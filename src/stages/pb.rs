@@ -25,7 +25,9 @@ fn default_min_points() -> usize {
 #[derive(Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CalibrateParams {
-    /// A `bem.sweep` stage (in `needs`): columns lambda, W, k, V0, converged and `y`.
+    /// A `bem.sweep` stage (in `needs`): columns lambda, W, k, V0, converged and `y` (and s,
+    /// for a power-law material: one curve per s; the laws are the SLS ones, so alpha is
+    /// then an effective prefactor).
     pub from: String,
     /// The friction column (default F_T = mu* |W|, Eq. 5.6).
     #[serde(default = "default_y")]
@@ -92,16 +94,20 @@ impl Kind for PbCalibrate {
             Some(ColumnData::Bool(b)) => b.clone(),
             _ => vec![true; v0.len()],
         };
-        let mut keys: Vec<(f64, f64, f64)> = Vec::new();
+        // Curves: one per (lambda, W, k) and, for a power-law material, per s.
+        let spectral = t.column("s").is_some();
+        let s_col = if spectral { t.f64_column("s")? } else { vec![-1.0; v0.len()] };
+        let key = |i: usize| (lam[i], w[i], k[i], s_col[i]);
+        let mut keys: Vec<(f64, f64, f64, f64)> = Vec::new();
         for i in 0..v0.len() {
-            if !keys.contains(&(lam[i], w[i], k[i])) {
-                keys.push((lam[i], w[i], k[i]));
+            if !keys.contains(&key(i)) {
+                keys.push(key(i));
             }
         }
         let mut out = Table::new();
-        for (l, wk, kk) in keys {
+        for (l, wk, kk, sk) in keys {
             let mut pts: Vec<(f64, f64)> = (0..v0.len())
-                .filter(|&i| (lam[i], w[i], k[i]) == (l, wk, kk) && ok[i] && v0[i] > 0.0 && y[i] > 0.0)
+                .filter(|&i| key(i) == (l, wk, kk, sk) && ok[i] && v0[i] > 0.0 && y[i] > 0.0)
                 .map(|i| (v0[i], y[i]))
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -144,10 +150,9 @@ impl Kind for PbCalibrate {
                     rolling_sqrt(alpha, l, wk, kk, 1.0)
                 };
                 let (x_min, x_max) = (r.v0.first().copied().unwrap_or(0.0), r.v0.last().copied().unwrap_or(0.0));
-                let row = Table::new()
-                    .with_f64("lambda", vec![l])
-                    .with_f64("W", vec![wk])
-                    .with_f64("k", vec![kk])
+                let row = Table::new().with_f64("lambda", vec![l]).with_f64("W", vec![wk]).with_f64("k", vec![kk]);
+                let row = if spectral { row.with_f64("s", vec![sk]) } else { row };
+                let row = row
                     .with("regime", ColumnData::Str(vec![r.name.to_string()]))
                     .with_f64("alpha", vec![alpha])
                     .with_f64("alpha_std_error", vec![alpha * sd / (n.max(1) as f64).sqrt()])

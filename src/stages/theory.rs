@@ -2,6 +2,7 @@
 //! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
 
 use super::check;
+use super::material::Material;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use crate::theory::{classical, line_contact, persson, persson_brener};
@@ -376,33 +377,72 @@ pub struct PbParams {
     pub k: f64,
     /// V_PB = v / v0, v0 = c0 / (2 pi tau) (sweepable).
     pub V_PB: f64,
+    /// Material: the exponent s in [0, 1) of the power-law retardation spectrum
+    /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; tau = tau2 in v0. Default: the
+    /// standard linear solid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub s: Option<f64>,
+    /// Power-law spectrum: tau1/tau2 (default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tau_ratio: Option<f64>,
+    /// Power-law spectrum: bins per decade of its discretisation (default 8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub per_decade: Option<usize>,
+    /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
+    /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prony: Option<Vec<[f64; 2]>>,
 }
 
-/// Persson–Brener trailing-edge energy release and friction (Eqs. 5.10–5.13).
+impl PbParams {
+    fn material(&self) -> Material<'_> {
+        Material {
+            k: self.k,
+            s: self.s,
+            tau_ratio: self.tau_ratio,
+            per_decade: self.per_decade,
+            prony: self.prony.as_deref(),
+        }
+    }
+}
+
+/// Persson–Brener trailing-edge energy release and friction (Eqs. 5.10–5.13), for the SLS
+/// or a retardation spectrum (Eq. 5.27).
 pub struct PerssonBrener;
 
 impl Kind for PerssonBrener {
     const NAME: &'static str = "theory.persson_brener";
     const VERSION: u32 = 1;
-    const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
-    const SWEEPABLE: &'static [&'static str] = &["k", "V_PB"];
+    const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
+    const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
     type Params = PbParams;
 
     fn validate(p: &PbParams) -> Vec<FieldError> {
         let mut e = Vec::new();
         check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
         check::positive(&mut e, "V_PB", p.V_PB);
+        p.material().validate(&mut e);
         e
     }
 
     fn run(p: &PbParams, _: &Inputs) -> Result<Output> {
-        let g = persson_brener::g_trailing(p.V_PB, p.k);
-        Ok(Table::new()
+        let m = p.material();
+        let spectrum = m.spectrum();
+        let g = persson_brener::g_trailing_spectrum(p.V_PB, p.k, &spectrum);
+        let t = Table::new()
             .with_f64("k", vec![p.k])
             .with_f64("V_PB", vec![p.V_PB])
             .with_f64("G_trail_over_dgamma", vec![g])
-            .with_f64("F_T_PB", vec![persson_brener::friction(p.V_PB, p.k)])
-            .into())
+            .with_f64("F_T_PB", vec![persson_brener::friction_spectrum(p.V_PB, p.k, &spectrum)]);
+        let t = match p.s {
+            _ if m.is_sls() => t,
+            Some(s) => t
+                .with_f64("s", vec![s])
+                .with_f64("n_eq_5_28", vec![persson_brener::power_law_exponent(s)])
+                .with("material", ColumnData::Str(vec![m.describe()])),
+            None => t.with("material", ColumnData::Str(vec![m.describe()])),
+        };
+        Ok(t.into())
     }
 }
 

@@ -21,6 +21,12 @@
 //!   Eq. 5.20: F_T1* = (1 - k) (2 pi)^2 alpha_PB^2 lambda^2 V0,
 //!   Eq. 5.21: F_T2* = sqrt 2 pi^(5/4) alpha_PB lambda |W|^(-1/4) V0^(1/2) / sqrt(1 - k)
 //! (pi sqrt(2 pi) (1/pi)^(1/4) = sqrt 2 pi^(5/4)).
+//!
+//! Power-law materials (Eqs. 5.24-5.28): `g_trailing_spectrum` solves Eq. 5.27 for a discrete
+//! retardation spectrum (a discretised S(tau)); for a broad power law, G/dgamma ~ u^n with
+//! n = (1-s)/(2-s) (Eq. 5.28; checked by the local slope in the tests).
+
+use crate::rheology::Spectrum;
 
 /// phi(z) = sqrt(1 + z^-2) - 1/z, written without cancellation.
 fn phi(z: f64) -> f64 {
@@ -34,17 +40,39 @@ fn phi(z: f64) -> f64 {
 /// g(x) = x (1 - (1-k) phi(u/x)) - 1 is negative at x = 1 and positive at x = 1/k;
 /// bisection in log x to machine precision.
 pub fn g_trailing(u: f64, k: f64) -> f64 {
+    g_trailing_spectrum(u, k, &Spectrum::sls())
+}
+
+/// Eq. 5.27 for a retardation spectrum (`rheology::Spectrum`, times t_j in units of the tau
+/// of v0): x = [1 - (1-k) Sum_j w_j phi(u t_j / x)]^-1, with b(tau) = 2 pi v tau/c = u t_j/x.
+/// One term at t = 1 is Eq. 5.12. The same bracket [1, 1/k] holds (0 <= phi <= 1).
+pub fn g_trailing_spectrum(u: f64, k: f64, spectrum: &Spectrum) -> f64 {
     assert!(u >= 0.0 && k > 0.0 && k <= 1.0);
     if u == 0.0 || k == 1.0 {
         return 1.0;
     }
+    let terms = spectrum.terms();
     let g = |lx: f64| {
         let x = lx.exp();
-        x * (1.0 - (1.0 - k) * phi(u / x)) - 1.0
+        let relaxed: f64 = terms.iter().map(|&(w, t)| w * phi(u * t / x)).sum();
+        x * (1.0 - (1.0 - k) * relaxed) - 1.0
     };
     let lx =
-        crate::numerics::roots::bisect(g, 0.0, (1.0 / k).ln(), 1e-15).expect("Eq. 5.12 brackets its root on [1, 1/k]");
+        crate::numerics::roots::bisect(g, 0.0, (1.0 / k).ln(), 1e-15).expect("Eq. 5.27 brackets its root on [1, 1/k]");
     lx.exp()
+}
+
+/// f_T / dgamma = x - 1/x (Eq. 5.13 normalised) for a retardation spectrum.
+pub fn friction_spectrum(u: f64, k: f64, spectrum: &Spectrum) -> f64 {
+    let x = g_trailing_spectrum(u, k, spectrum);
+    (x - 1.0) * (x + 1.0) / x
+}
+
+/// The exponent n = (1 - s)/(2 - s) of G/dgamma ~ v^n for a broad power-law spectrum
+/// (Eq. 5.28). Derivation: for tau1 << tau* = c/(2 pi v) << tau2 and k << 1/x << 1,
+/// 1/x ~ Int_tau1^tau* S + Int_tau*^tau2 S tau*/tau ~ tau*^(1-s) ~ (x/u)^(1-s).
+pub fn power_law_exponent(s: f64) -> f64 {
+    (1.0 - s) / (2.0 - s)
 }
 
 /// f_T / dgamma = x - 1/x (Eq. 5.13, normalised), computed as (x - 1)(x + 1)/x.
@@ -119,6 +147,46 @@ mod tests {
         for k in [0.1, 0.01] {
             let f = friction(1e14, k);
             assert!((f / (1.0 / k - k) - 1.0).abs() < 1e-4, "k={k}: {f}");
+        }
+    }
+
+    #[test]
+    fn power_law_exponent_of_eq_5_28() {
+        // A very broad spectrum (tau1/tau2 = 1e-12) and k = 1e-8 leave room for the
+        // intermediate regime; the local slope d ln x / d ln u at its flattest point is n.
+        for s in [0.25, 0.5, 0.6, 0.75] {
+            let spec = Spectrum::power_law(s, 1e-12, 8).unwrap();
+            let k = 1e-8;
+            let slope = |u: f64| {
+                let (a, b) = (g_trailing_spectrum(u / 1.5, k, &spec), g_trailing_spectrum(u * 1.5, k, &spec));
+                (b / a).ln() / 2.25f64.ln()
+            };
+            // x rises from 1 to 1/k; the slope's plateau is where it varies least.
+            let us: Vec<f64> = (0..=80).map(|i| 10f64.powf(-2.0 + 0.25 * i as f64)).collect();
+            let slopes: Vec<f64> = us.iter().map(|&u| slope(u)).collect();
+            let flattest = (1..slopes.len() - 1)
+                .min_by(|&i, &j| {
+                    let d = |i: usize| (slopes[i + 1] - slopes[i - 1]).abs();
+                    d(i).total_cmp(&d(j))
+                })
+                .unwrap();
+            let n = power_law_exponent(s);
+            // Measured: 0.4274, 0.33333, 0.28584, 0.2013 against 3/7, 1/3, 2/7, 1/5.
+            assert!(
+                (slopes[flattest] - n).abs() < 0.003,
+                "s={s}: slope {} at u={:e}, n={n}",
+                slopes[flattest],
+                us[flattest]
+            );
+        }
+    }
+
+    #[test]
+    fn the_sls_is_the_one_term_spectrum() {
+        for (u, k) in [(0.3, 0.1), (1e5, 0.001)] {
+            let one = Spectrum::from_relaxation(k, &[(1.0, k)]).unwrap();
+            let (a, b) = (g_trailing_spectrum(u, k, &one), g_trailing(u, k));
+            assert!((a / b - 1.0).abs() < 1e-12, "{a} {b}");
         }
     }
 
