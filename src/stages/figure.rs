@@ -55,6 +55,12 @@ pub struct DataLayer {
     /// Scale the y values by this factor.
     #[serde(default = "one")]
     pub y_scale: f64,
+    /// Palette index (0 black, 1 blue, 2 red, 3 green, 4 purple, 5 orange, ...) of this
+    /// layer's first curve; its other curves take the next colours. Default: continue the
+    /// palette after the previous curves. Give two layers the same `color` to pair their
+    /// curves (e.g. +W solid and -W dashed of the same lambda).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<usize>,
 }
 
 fn one() -> f64 {
@@ -98,6 +104,10 @@ pub struct FitLayer {
     /// Keep only rows where each named column equals the given value.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub filter: BTreeMap<String, f64>,
+    /// Palette index (as for data layers) of every curve of this layer: fitted laws drawn
+    /// as one family. Default: continue the palette.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<usize>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
@@ -143,6 +153,8 @@ pub struct FigureParams {
 struct Series {
     label: String,
     style: Style,
+    /// Palette index; None: the series' position in the figure.
+    color: Option<usize>,
     x_name: String,
     y_name: String,
     points: Vec<(f64, f64)>,
@@ -179,7 +191,8 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
     }
     Ok(order
         .into_iter()
-        .map(|g| {
+        .enumerate()
+        .map(|(i, g)| {
             let (first_row, points) = groups.remove(&g).unwrap();
             let mut label = layer.label.clone();
             for (name, col) in &t.columns {
@@ -188,7 +201,14 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
                     label = label.replace(&pat, &col.display_at(first_row));
                 }
             }
-            Series { label, style: layer.style, x_name: layer.x.clone(), y_name: layer.y.clone(), points }
+            Series {
+                label,
+                style: layer.style,
+                color: layer.color.map(|c| c + i),
+                x_name: layer.x.clone(),
+                y_name: layer.y.clone(),
+                points,
+            }
         })
         .collect())
 }
@@ -202,7 +222,14 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
             (x, g.through[1] * (x / g.through[0]).powf(g.slope))
         })
         .collect();
-    Series { label: g.label.clone(), style: g.style, x_name: "guide".into(), y_name: "guide".into(), points }
+    Series {
+        label: g.label.clone(),
+        style: g.style,
+        color: None,
+        x_name: "guide".into(),
+        y_name: "guide".into(),
+        points,
+    }
 }
 
 fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Series>> {
@@ -231,6 +258,7 @@ fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Seri
                 GuideLayer { slope: slope[row], through: [1.0, pre[row]], x_from, x_to, label, style: layer.style };
             let mut s = guide_series(&guide, log_x);
             (s.x_name, s.y_name) = ("fit".into(), "fit".into());
+            s.color = layer.color;
             s
         })
         .collect())
@@ -349,7 +377,7 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             .map_err(|e| anyhow::anyhow!("{e:?}"))?;
         let inside = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
         for (i, s) in series.iter().enumerate() {
-            let color = PALETTE[i % PALETTE.len()];
+            let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
             let style = ShapeStyle::from(&color).stroke_width(2);
             let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (tx(x), ty(y))).filter(inside).collect();
             let err = |e| anyhow::anyhow!("{e:?}");
@@ -509,4 +537,63 @@ impl Kind for Figure {
 
 pub fn register(r: &mut crate::pipeline::kind::Registry) {
     r.add::<Figure>();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layer(y: &str, color: Option<usize>) -> DataLayer {
+        DataLayer {
+            from: "t".into(),
+            x: "x".into(),
+            y: y.into(),
+            group_by: Some("g".into()),
+            label: "g = {g}".into(),
+            style: Style::Line,
+            filter: BTreeMap::new(),
+            y_scale: 1.0,
+            color,
+        }
+    }
+
+    #[test]
+    fn layers_with_the_same_color_pair_their_curves() {
+        let t = Table::new()
+            .with_f64("x", vec![1.0, 2.0, 1.0, 2.0])
+            .with_f64("a", vec![1.0, 2.0, 3.0, 4.0])
+            .with_f64("b", vec![1.5, 2.5, 3.5, 4.5])
+            .with_f64("g", vec![0.0, 0.0, 1.0, 1.0]);
+        let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+        let colors = |l: &DataLayer| -> Vec<Option<usize>> {
+            data_series(l, &inputs).unwrap().iter().map(|s| s.color).collect()
+        };
+        assert_eq!(colors(&layer("a", None)), vec![None, None]);
+        assert_eq!(colors(&layer("b", Some(2))), vec![Some(2), Some(3)]);
+        // Rendered: the first layer is blue and red (color 1); without `color` the second
+        // layer takes the palette by position (red, green), with color 1 it repeats blue, red.
+        let fig = |c: Option<usize>| FigureParams {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            log_x: false,
+            log_y: false,
+            x_range: None,
+            y_range: None,
+            width: 400,
+            height: 300,
+            legend: LegendPosition::UpperRight,
+            layers: vec![Layer::Data(layer("a", Some(1))), Layer::Data(layer("b", c))],
+        };
+        let svg = |c| {
+            let series: Vec<Series> =
+                [layer("a", Some(1)), layer("b", c)].iter().flat_map(|l| data_series(l, &inputs).unwrap()).collect();
+            render(&fig(c), &series).unwrap()
+        };
+        let count = |s: &str, rgb: &str| s.matches(&format!("stroke=\"#{rgb}\"")).count();
+        let (free, paired) = (svg(None), svg(Some(1)));
+        assert!(count(&free, "2CA02C") > 0);
+        assert_eq!(count(&paired, "2CA02C"), 0);
+        assert_eq!(count(&paired, "1F77B4"), 2 * count(&free, "1F77B4"));
+    }
 }
