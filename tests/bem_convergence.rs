@@ -103,3 +103,29 @@ fn the_mesh_is_refined_until_the_requested_accuracy_is_met() {
     assert_eq!(capped.mesh.n, 300);
     assert!(est > 1e-6 * capped.friction().mu_star);
 }
+
+#[test]
+fn the_maximum_over_speed_converges_and_its_error_estimate_is_honest() {
+    // The maximum of mu* over V0 (W = 0.1, k = 0.1) with every solve to rel_tol 1e-3, then
+    // 1e-4: the change equals the estimate reported with the first to within a factor 2.
+    // Measured (release, `examples`-style probe): lambda = 0.3: 16.51756 (est 5.8e-3),
+    // 16.52359 (est 1.5e-3), 16.52516 at 1e-5; lambda = 3: 99.3598 (est 3.4e-2), 99.3887
+    // (est 8.7e-3), 99.3973 at 1e-5. V0 at the maximum is the same at every tolerance.
+    use repro::bem::maxima::max_over_speed;
+    for (lambda, expected) in [(0.3, 16.525), (3.0, 99.397)] {
+        let base = Params::sls(lambda, 0.1, 0.1, 1.0);
+        let at = |tol: f64| {
+            max_over_speed(&base, 0.1, 100.0, 9, 0.01, |p| solve_to_tolerance(p, starting_mesh(p, tol), tol, 64_000))
+        };
+        let (a, b) = (at(1e-3), at(1e-4));
+        assert!(a.all_converged && b.all_converged);
+        let change = (b.friction.mu_star - a.friction.mu_star).abs();
+        assert!(
+            change < 2.0 * a.error_estimate && change > 0.5 * a.error_estimate,
+            "lambda {lambda}: change {change:.2e}, estimate {:.2e}",
+            a.error_estimate
+        );
+        assert!((b.friction.mu_star / expected - 1.0).abs() < 2e-4, "lambda {lambda}: {}", b.friction.mu_star);
+        assert!((a.v0 / b.v0 - 1.0).abs() < 1e-9);
+    }
+}
