@@ -6,6 +6,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod bem;
+pub mod fem;
 pub mod numerics;
 pub mod pipeline;
 pub mod rheology;

@@ -1,0 +1,300 @@
+//! The 8-node axisymmetric solid element of the Chapter 3 model (as ANSYS PLANE183),
+//! geometrically nonlinear (total Lagrangian), compressible neo-Hookean.
+//!
+//! Kinematics: reference coordinates (R, Z), displacements (u_r, u_z); the deformation
+//! gradient has the in-plane block d(r, z)/d(R, Z) and the hoop stretch F_tt = 1 + u_r/R.
+//! Material (chosen over St Venant-Kirchhoff, whose stress softens and vanishes under
+//! strong compression, which an inverting shell pressed on a plate reaches locally):
+//!   W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2,
+//!   P = mu (F - F^-T) + lambda ln J F^-T,
+//! with the Lame constants of E and nu, so that it reduces to linear elasticity with E and
+//! nu at small strain. Nodal forces f_a = Int G_a^T P dV0 and the consistent tangent
+//! K_ab = Int G_a^T (dP/dF) G_b dV0 (material and geometric parts together), dV0 = 2 pi R
+//! dR dZ, 3 x 3 Gauss points. G_a maps the nodal displacements of node a to the components
+//! (F_rR, F_rZ, F_zR, F_zZ, F_tt).
+
+// Index loops over nodes and components read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+/// Lame constants (mu, lambda) of Young's modulus and Poisson's ratio.
+pub fn lame(e: f64, nu: f64) -> (f64, f64) {
+    (e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
+}
+
+/// Natural coordinates of the 8 nodes (corners, then mid-sides).
+const NODES: [(f64, f64); 8] =
+    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (0.0, -1.0), (1.0, 0.0), (0.0, 1.0), (-1.0, 0.0)];
+
+/// Serendipity shape functions and their derivatives in (xi, eta).
+pub fn shape(xi: f64, eta: f64) -> ([f64; 8], [[f64; 2]; 8]) {
+    let mut n = [0.0; 8];
+    let mut d = [[0.0; 2]; 8];
+    for (a, &(xa, ya)) in NODES.iter().enumerate() {
+        if a < 4 {
+            n[a] = 0.25 * (1.0 + xi * xa) * (1.0 + eta * ya) * (xi * xa + eta * ya - 1.0);
+            d[a] = [
+                0.25 * xa * (1.0 + eta * ya) * (2.0 * xi * xa + eta * ya),
+                0.25 * ya * (1.0 + xi * xa) * (xi * xa + 2.0 * eta * ya),
+            ];
+        } else if xa == 0.0 {
+            n[a] = 0.5 * (1.0 - xi * xi) * (1.0 + eta * ya);
+            d[a] = [-xi * (1.0 + eta * ya), 0.5 * ya * (1.0 - xi * xi)];
+        } else {
+            n[a] = 0.5 * (1.0 + xi * xa) * (1.0 - eta * eta);
+            d[a] = [0.5 * xa * (1.0 - eta * eta), -eta * (1.0 + xi * xa)];
+        }
+    }
+    (n, d)
+}
+
+/// 3-point Gauss-Legendre rule on [-1, 1].
+const GAUSS: [(f64, f64); 3] =
+    [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
+
+/// A Gauss point in the reference configuration: shape values, their R and Z derivatives,
+/// the radius and the weight 2 pi R det(J) w.
+struct Point {
+    n: [f64; 8],
+    dn: [[f64; 2]; 8],
+    radius: f64,
+    dv: f64,
+}
+
+fn points(x: &[[f64; 2]; 8]) -> Vec<Point> {
+    let mut out = Vec::with_capacity(9);
+    for &(xi, wx) in &GAUSS {
+        for &(eta, wy) in &GAUSS {
+            let (n, d) = shape(xi, eta);
+            let mut j = [[0.0; 2]; 2]; // j[c][k] = dX_c / dxi_k
+            let mut radius = 0.0;
+            for a in 0..8 {
+                radius += n[a] * x[a][0];
+                for c in 0..2 {
+                    for k in 0..2 {
+                        j[c][k] += x[a][c] * d[a][k];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            assert!(det > 0.0, "element with non-positive Jacobian {det}");
+            // dN/dX_c = dN/dxi_k (J^-1)_kc.
+            let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+            let mut dn = [[0.0; 2]; 8];
+            for a in 0..8 {
+                for c in 0..2 {
+                    dn[a][c] = d[a][0] * inv[0][c] + d[a][1] * inv[1][c];
+                }
+            }
+            out.push(Point { n, dn, radius, dv: 2.0 * std::f64::consts::PI * radius * det * wx * wy });
+        }
+    }
+    out
+}
+
+/// Components (F_rR, F_rZ, F_zR, F_zZ, F_tt) at a point.
+fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
+    let mut f = [1.0, 0.0, 0.0, 1.0, 1.0];
+    for a in 0..8 {
+        f[0] += p.dn[a][0] * u[a][0];
+        f[1] += p.dn[a][1] * u[a][0];
+        f[2] += p.dn[a][0] * u[a][1];
+        f[3] += p.dn[a][1] * u[a][1];
+        f[4] += p.n[a] * u[a][0] / p.radius;
+    }
+    f
+}
+
+/// (i, J) of each component, in 3D indices r = 0, z = 1, theta = 2.
+const INDEX: [(usize, usize); 5] = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)];
+
+/// Neo-Hookean P (components) and A = dP/dF (5 x 5), or None if J <= 0.
+fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5])> {
+    let det2 = f[0] * f[3] - f[1] * f[2];
+    let j = det2 * f[4];
+    if !(j > 0.0) {
+        return None;
+    }
+    let lnj = j.ln();
+    // F^-1 (3 x 3, block diagonal).
+    let mut inv = [[0.0; 3]; 3];
+    inv[0][0] = f[3] / det2;
+    inv[0][1] = -f[1] / det2;
+    inv[1][0] = -f[2] / det2;
+    inv[1][1] = f[0] / det2;
+    inv[2][2] = 1.0 / f[4];
+    let mut p = [0.0; 5];
+    let mut a = [[0.0; 5]; 5];
+    for (c, &(i, jj)) in INDEX.iter().enumerate() {
+        // F^-T_iJ = F^-1_Ji.
+        p[c] = mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i];
+        for (d, &(k, l)) in INDEX.iter().enumerate() {
+            let delta = if i == k && jj == l { 1.0 } else { 0.0 };
+            a[c][d] = mu * delta + lambda * inv[jj][i] * inv[l][k] + (mu - lambda * lnj) * inv[l][i] * inv[jj][k];
+        }
+    }
+    Some((p, a))
+}
+
+/// The element's strain energy (for tests) or None if inverted somewhere.
+pub fn energy(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
+    let mut w = 0.0;
+    for p in points(x) {
+        let f = deformation(&p, u);
+        let j = (f[0] * f[3] - f[1] * f[2]) * f[4];
+        if !(j > 0.0) {
+            return None;
+        }
+        let i1: f64 = f.iter().map(|v| v * v).sum();
+        w += p.dv * (0.5 * mu * (i1 - 3.0) - mu * j.ln() + 0.5 * lambda * j.ln().powi(2));
+    }
+    Some(w)
+}
+
+/// Internal forces (16: node a's r then z) and tangent (16 x 16), or None if the element is
+/// inverted at a Gauss point (the caller cuts the step).
+#[allow(clippy::type_complexity)]
+pub fn forces_and_tangent(
+    x: &[[f64; 2]; 8],
+    u: &[[f64; 2]; 8],
+    mu: f64,
+    lambda: f64,
+) -> Option<([f64; 16], [[f64; 16]; 16])> {
+    let mut fint = [0.0; 16];
+    let mut k = [[0.0; 16]; 16];
+    for pt in points(x) {
+        let f = deformation(&pt, u);
+        let (p, a) = stress(&f, mu, lambda)?;
+        // G: 5 x 16.
+        let mut g = [[0.0; 16]; 5];
+        for b in 0..8 {
+            g[0][2 * b] = pt.dn[b][0];
+            g[1][2 * b] = pt.dn[b][1];
+            g[4][2 * b] = pt.n[b] / pt.radius;
+            g[2][2 * b + 1] = pt.dn[b][0];
+            g[3][2 * b + 1] = pt.dn[b][1];
+        }
+        let mut ag = [[0.0; 16]; 5];
+        for c in 0..5 {
+            for d in 0..5 {
+                if a[c][d] != 0.0 {
+                    for q in 0..16 {
+                        ag[c][q] += a[c][d] * g[d][q];
+                    }
+                }
+            }
+        }
+        for q in 0..16 {
+            let mut s = 0.0;
+            for c in 0..5 {
+                s += g[c][q] * p[c];
+            }
+            fint[q] += s * pt.dv;
+            for r in 0..16 {
+                let mut s = 0.0;
+                for c in 0..5 {
+                    s += g[c][q] * ag[c][r];
+                }
+                k[q][r] += s * pt.dv;
+            }
+        }
+    }
+    Some((fint, k))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A curved element of a shell section near the axis (r from 0.2).
+    fn element() -> [[f64; 2]; 8] {
+        let node = |phi: f64, rho: f64| [rho * phi.sin(), rho * phi.cos()];
+        let (p0, p1, r0, r1) = (0.2, 0.35, 1.0, 1.1);
+        let (pm, rm) = (0.5 * (p0 + p1), 0.5 * (r0 + r1));
+        [node(p0, r0), node(p1, r0), node(p1, r1), node(p0, r1), node(pm, r0), node(p1, rm), node(pm, r1), node(p0, rm)]
+    }
+
+    fn displacement(scale: f64) -> [[f64; 2]; 8] {
+        let mut u = [[0.0; 2]; 8];
+        for (a, v) in u.iter_mut().enumerate() {
+            *v = [scale * (0.3 * (a as f64 * 1.3).sin()), scale * (0.2 * (a as f64 * 0.7).cos() - 0.1)];
+        }
+        u
+    }
+
+    #[test]
+    fn shape_functions_partition_unity_and_interpolate() {
+        for &(xi, eta) in &[(0.3, -0.7), (-1.0, 0.2), (0.0, 0.0)] {
+            let (n, d) = shape(xi, eta);
+            assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+            assert!(
+                d.iter().map(|g| g[0]).sum::<f64>().abs() < 1e-14 && d.iter().map(|g| g[1]).sum::<f64>().abs() < 1e-14
+            );
+        }
+        for (a, &(xa, ya)) in NODES.iter().enumerate() {
+            let (n, _) = shape(xa, ya);
+            for (b, v) in n.iter().enumerate() {
+                assert!((v - f64::from(u8::from(a == b))).abs() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn forces_are_the_energy_gradient_and_the_tangent_their_jacobian() {
+        let (mu, lambda) = lame(1.3, 0.45);
+        let x = element();
+        let u = displacement(0.05);
+        let (f, k) = forces_and_tangent(&x, &u, mu, lambda).unwrap();
+        let h = 1e-6;
+        let bump = |q: usize, s: f64| {
+            let mut v = u;
+            v[q / 2][q % 2] += s;
+            v
+        };
+        for q in 0..16 {
+            let fd = (energy(&x, &bump(q, h), mu, lambda).unwrap() - energy(&x, &bump(q, -h), mu, lambda).unwrap())
+                / (2.0 * h);
+            assert!(
+                (fd - f[q]).abs() < 1e-6 * f.iter().map(|v| v.abs()).fold(0.0, f64::max),
+                "f[{q}]: {fd} vs {}",
+                f[q]
+            );
+            let (fp, _) = forces_and_tangent(&x, &bump(q, h), mu, lambda).unwrap();
+            let (fm, _) = forces_and_tangent(&x, &bump(q, -h), mu, lambda).unwrap();
+            for r in 0..16 {
+                let kd = (fp[r] - fm[r]) / (2.0 * h);
+                assert!((kd - k[r][q]).abs() < 1e-5 * k[r][r].abs().max(1.0), "K[{r}][{q}]: {kd} vs {}", k[r][q]);
+            }
+        }
+    }
+
+    #[test]
+    fn rigid_translation_along_the_axis_is_force_free() {
+        let (mu, lambda) = lame(1.3, 0.45);
+        let u = [[0.0, 0.37]; 8];
+        let (f, _) = forces_and_tangent(&element(), &u, mu, lambda).unwrap();
+        assert!(f.iter().all(|v| v.abs() < 1e-12), "{f:?}");
+    }
+
+    #[test]
+    fn small_strain_limit_is_linear_elasticity_with_e_and_nu() {
+        // Uniaxial stress along z with lateral contraction nu: u_z = eps Z, u_r = -nu eps R.
+        // Forces on the element are then those of sigma_zz = E eps alone: zero net radial
+        // force, and the resultant axial force equals E eps times the annulus area.
+        let (e, nu) = (1.3, 0.45);
+        let (mu, lambda) = lame(e, nu);
+        // A rectangular element r in [0.5, 0.7], z in [0, 0.3].
+        let x = [[0.5, 0.0], [0.7, 0.0], [0.7, 0.3], [0.5, 0.3], [0.6, 0.0], [0.7, 0.15], [0.6, 0.3], [0.5, 0.15]];
+        let eps = 1e-7;
+        let mut u = [[0.0; 2]; 8];
+        for a in 0..8 {
+            u[a] = [-nu * eps * x[a][0], eps * x[a][1]];
+        }
+        let (f, _) = forces_and_tangent(&x, &u, mu, lambda).unwrap();
+        let top: f64 = [2usize, 3, 6].iter().map(|&a| f[2 * a + 1]).sum();
+        let area = std::f64::consts::PI * (0.7f64.powi(2) - 0.5f64.powi(2));
+        assert!((top / (e * eps * area) - 1.0).abs() < 1e-5, "{}", top / (e * eps * area));
+        // sigma_rr = sigma_tt = 0: no radial force on any node.
+        let radial = (0..8).map(|a| f[2 * a].abs()).fold(0.0, f64::max);
+        assert!(radial < 1e-6 * top.abs(), "{radial}");
+    }
+}

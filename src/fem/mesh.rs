@@ -1,0 +1,131 @@
+//! Mesh of a hemispherical shell's meridian section for the axisymmetric model of thesis
+//! Chapter 3 (Section 3.2, Fig. 3.1b): 8-node serendipity quadrilaterals (as ANSYS PLANE183)
+//! in the (r, z) half-plane, `n_thickness` elements through the thickness and `n_meridian`
+//! along the meridian, graded towards the apex, where the plate touches first.
+//!
+//! Geometry: inner radius R, thickness h; the material occupies R <= rho <= R + h,
+//! 0 <= phi <= pi/2 (phi from the axis), r = rho sin(phi), z = rho cos(phi). The apex of the
+//! outer surface is at (0, R + h); the equator (phi = pi/2) is the base z = 0.
+//! Nodes lie on the exact circles (isoparametric elements then represent the arcs to third
+//! order in the element size).
+
+/// One quadratic element: corner nodes counter-clockwise in (xi, eta), then mid-side nodes
+/// (xi, eta) = (0,-1), (1,0), (0,1), (-1,0). xi runs along the meridian (apex to equator),
+/// eta through the thickness (inner to outer).
+pub type Element = [usize; 8];
+
+#[derive(Clone, Debug)]
+pub struct ShellMesh {
+    /// Inner radius R and thickness h.
+    pub radius: f64,
+    pub thickness: f64,
+    /// Node coordinates (r, z) in the reference configuration.
+    pub nodes: Vec<[f64; 2]>,
+    pub elements: Vec<Element>,
+    /// Nodes on the axis r = 0 (u_r = 0 there).
+    pub axis: Vec<usize>,
+    /// Nodes on the base z = 0 (the equator section).
+    pub base: Vec<usize>,
+    /// Nodes of the outer surface, from the apex towards the equator (contact candidates).
+    pub outer: Vec<usize>,
+}
+
+/// Meridian angles of the element boundaries: `n` elements on [0, pi/2] whose sizes grow
+/// geometrically from the apex so that the last is `grading` times the first.
+pub fn graded_angles(n: usize, grading: f64) -> Vec<f64> {
+    let q = if n > 1 { grading.powf(1.0 / (n - 1) as f64) } else { 1.0 };
+    let sizes: Vec<f64> = (0..n).map(|i| q.powi(i as i32)).collect();
+    let total: f64 = sizes.iter().sum();
+    let mut out = vec![0.0];
+    let mut acc = 0.0;
+    for s in sizes {
+        acc += s;
+        out.push(std::f64::consts::FRAC_PI_2 * acc / total);
+    }
+    *out.last_mut().unwrap() = std::f64::consts::FRAC_PI_2;
+    out
+}
+
+impl ShellMesh {
+    /// A hemispherical shell of inner radius `radius` and thickness `thickness`, with
+    /// `n_meridian` x `n_thickness` elements, sizes along the meridian growing by `grading`
+    /// from apex to equator.
+    pub fn hemisphere(radius: f64, thickness: f64, n_meridian: usize, n_thickness: usize, grading: f64) -> ShellMesh {
+        assert!(radius > 0.0 && thickness > 0.0 && n_meridian >= 1 && n_thickness >= 1 && grading > 0.0);
+        let phi_el = graded_angles(n_meridian, grading);
+        // Grid of (2 n_meridian + 1) x (2 n_thickness + 1) positions; serendipity elements
+        // skip the positions with both indices odd (element centres).
+        let (ni, nj) = (2 * n_meridian + 1, 2 * n_thickness + 1);
+        let mut id = vec![usize::MAX; ni * nj];
+        let mut nodes = Vec::new();
+        for i in 0..ni {
+            let phi = if i % 2 == 0 { phi_el[i / 2] } else { 0.5 * (phi_el[i / 2] + phi_el[i / 2 + 1]) };
+            for j in 0..nj {
+                if i % 2 == 1 && j % 2 == 1 {
+                    continue;
+                }
+                let rho = radius + thickness * j as f64 / (nj - 1) as f64;
+                let (s, c) = phi.sin_cos();
+                // Exact zeros on the axis and the base.
+                let r = if i == 0 { 0.0 } else { rho * s };
+                let z = if i == ni - 1 { 0.0 } else { rho * c };
+                id[i * nj + j] = nodes.len();
+                nodes.push([r, z]);
+            }
+        }
+        let at = |i: usize, j: usize| id[i * nj + j];
+        let mut elements = Vec::with_capacity(n_meridian * n_thickness);
+        for e in 0..n_meridian {
+            for t in 0..n_thickness {
+                let (i0, j0) = (2 * e, 2 * t);
+                // (xi, eta) = (-1,-1), (1,-1), (1,1), (-1,1), then mid-sides.
+                elements.push([
+                    at(i0, j0),
+                    at(i0 + 2, j0),
+                    at(i0 + 2, j0 + 2),
+                    at(i0, j0 + 2),
+                    at(i0 + 1, j0),
+                    at(i0 + 2, j0 + 1),
+                    at(i0 + 1, j0 + 2),
+                    at(i0, j0 + 1),
+                ]);
+            }
+        }
+        let axis = (0..nj).map(|j| at(0, j)).collect();
+        let base = (0..nj).map(|j| at(ni - 1, j)).collect();
+        let outer = (0..ni).map(|i| at(i, nj - 1)).collect();
+        ShellMesh { radius, thickness, nodes, elements, axis, base, outer }
+    }
+
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn grading_and_counts() {
+        let a = graded_angles(10, 4.0);
+        assert_eq!(a.len(), 11);
+        let first = a[1] - a[0];
+        let last = a[10] - a[9];
+        assert!((last / first - 4.0).abs() < 1e-12 && (a[10] - PI / 2.0).abs() < 1e-15);
+        let m = ShellMesh::hemisphere(15.0, 1.0, 10, 4, 4.0);
+        // Serendipity: (2m+1)(2t+1) - m t nodes.
+        assert_eq!(m.n_nodes(), 21 * 9 - 40);
+        assert_eq!(m.elements.len(), 40);
+        assert_eq!(m.axis.len(), 9);
+        assert_eq!(m.outer.len(), 21);
+        // Every node is used by an element.
+        let mut used = vec![false; m.n_nodes()];
+        m.elements.iter().flatten().for_each(|&n| used[n] = true);
+        assert!(used.iter().all(|&u| u));
+        // Apex of the outer surface and the base.
+        assert_eq!(m.nodes[m.outer[0]], [0.0, 16.0]);
+        assert!(m.base.iter().all(|&n| m.nodes[n][1] == 0.0));
+    }
+}
