@@ -19,6 +19,8 @@ pub struct Step {
     pub iterations: usize,
     pub residual: f64,
     pub converged: bool,
+    /// The free tangent is positive definite (stable under prescribed delta).
+    pub stable: bool,
 }
 
 /// Newton options.
@@ -36,7 +38,7 @@ impl Default for Options {
 }
 
 /// The z of the undeformed apex of the outer surface.
-pub fn apex(model: &Model) -> f64 {
+pub fn apex_z(model: &Model) -> f64 {
     model.mesh.radius + model.mesh.thickness
 }
 
@@ -50,7 +52,7 @@ struct Evaluation {
 
 /// Newton at plate displacement `delta` from displacements `u0`.
 pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], opt: Options) -> Step {
-    let z_plate = apex(model) - delta;
+    let z_plate = apex_z(model) - delta;
     let scale = e * model.mesh.thickness.powi(2);
     let mut u = u0.to_vec();
     let residual_of = |u: &[f64]| -> Option<Evaluation> {
@@ -69,6 +71,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], op
             iterations: 0,
             residual: f64::INFINITY,
             converged: false,
+            stable: false,
         };
     };
     let mut iterations = 0;
@@ -96,7 +99,8 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], op
         }
     }
     let converged = cur.norm <= opt.tol * scale;
-    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged }
+    let stable = converged && model.is_stable(&cur.tangent);
+    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable }
 }
 
 /// Loads from delta = 0 to `delta_max` in `steps` equal steps (halved on failure, at most
@@ -131,6 +135,20 @@ pub fn load_path(model: &Model, plate: &Plate, e: f64, delta_max: f64, steps: us
     out
 }
 
+/// Pushes the central part (r < radius) of a state down by a smooth dimple of depth `depth`
+/// (through the whole thickness): the perturbation that leads Newton from the flattened
+/// state to the inverted one.
+pub fn dimple(model: &Model, u: &[f64], radius: f64, depth: f64) -> Vec<f64> {
+    let mut out = u.to_vec();
+    for (i, x) in model.mesh.nodes.iter().enumerate() {
+        if x[0] < radius {
+            let q = 1.0 - (x[0] / radius).powi(2);
+            out[2 * i + 1] -= depth * q * q;
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,5 +178,37 @@ mod tests {
         assert!((plate_ratio - 1.0).abs() < 0.08 && (mid_ratio - 1.0).abs() < 0.08, "{plate_ratio} {mid_ratio}");
         assert!(plate_ratio < mid_ratio);
         assert!(last.contact.max_penetration < 2e-4 * last.delta);
+    }
+
+    #[test]
+    fn flattened_and_inverted_states_coexist_at_large_indentation() {
+        // The thesis geometry (R = 15, h = 1, E = 1.3, nu = 0.45, clamped) at delta/R = 0.25:
+        // the path from the reference stays flattened (disk contact) and stable (positive
+        // definite tangent); a central dimple leads Newton to the inverted state (Pogorelov's
+        // mirror buckling): ring contact, apex below the plate, a third less force. Measured,
+        // F R/(E h^3) flattened / inverted: 13.153 / 8.570 (60 x 3 elements), 13.176 / 8.634
+        // (80 x 3), 13.174 / 8.629 (80 x 4), 13.166 / 8.612 (120 x 4).
+        let (e, nu, r, h) = (1.3, 0.45, 15.0, 1.0);
+        let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, nu, Base::Clamped);
+        let plate = Plate::new(&model.mesh, e, 1000.0);
+        let path = load_path(&model, &plate, e, 0.25 * r, 10, 6);
+        let flat = path.last().unwrap();
+        assert!(flat.converged && flat.stable && (flat.delta / r - 0.25).abs() < 1e-12);
+        let a = 0.8 * flat.contact.radius;
+        let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
+        let inverted =
+            solve_at(&model, &plate, e, flat.delta, &start, Options { max_iterations: 60, ..Options::default() });
+        assert!(inverted.converged && inverted.stable);
+        let fbar = |f: f64| f * r / (e * h.powi(3));
+        assert!((fbar(flat.contact.force) - 13.16).abs() < 0.05, "{}", fbar(flat.contact.force));
+        assert!((fbar(inverted.contact.force) - 8.6).abs() < 0.1, "{}", fbar(inverted.contact.force));
+        let apex = model.mesh.outer[0];
+        let z_apex = model.mesh.nodes[apex][1] + inverted.u[2 * apex + 1];
+        assert!(z_apex < apex_z(&model) - flat.delta - 2.0 * h, "apex at {z_apex}");
+        let first = inverted.contact.active.iter().position(|&c| c).unwrap();
+        assert!(first > model.mesh.outer.len() / 2, "contact from outer node {first}: not a ring");
+        // The reference state is stable.
+        let (_, k) = model.assemble(&vec![0.0; model.n_dofs()]).unwrap();
+        assert!(model.is_stable(&k));
     }
 }

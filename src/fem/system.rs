@@ -85,10 +85,9 @@ impl Model {
         Some((f, triplets))
     }
 
-    /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones), K given as triplets.
-    pub fn solve(&self, triplets: &[(usize, usize, f64)], rhs: &[f64]) -> Result<Vec<f64>> {
-        let n = self.n_dofs();
-        let mut index = vec![usize::MAX; n];
+    /// Numbering of the free dofs (usize::MAX for fixed ones) and their count.
+    fn free_index(&self) -> (Vec<usize>, usize) {
+        let mut index = vec![usize::MAX; self.n_dofs()];
         let mut m = 0;
         for (i, slot) in index.iter_mut().enumerate() {
             if !self.fixed[i] {
@@ -96,23 +95,48 @@ impl Model {
                 m += 1;
             }
         }
+        (index, m)
+    }
+
+    /// The free-free block of a matrix given as triplets.
+    fn free_matrix(
+        &self,
+        triplets: &[(usize, usize, f64)],
+        index: &[usize],
+        m: usize,
+    ) -> Result<SparseColMat<usize, f64>> {
         let entries: Vec<Triplet<usize, usize, f64>> = triplets
             .iter()
             .filter(|&&(i, j, _)| index[i] != usize::MAX && index[j] != usize::MAX)
             .map(|&(i, j, v)| Triplet::new(index[i], index[j], v))
             .collect();
-        let k = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &entries)
-            .map_err(|e| anyhow!("sparse tangent: {e:?}"))?;
+        SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &entries).map_err(|e| anyhow!("sparse tangent: {e:?}"))
+    }
+
+    /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones), K given as triplets.
+    pub fn solve(&self, triplets: &[(usize, usize, f64)], rhs: &[f64]) -> Result<Vec<f64>> {
+        let (index, m) = self.free_index();
+        let k = self.free_matrix(triplets, &index, m)?;
         let lu = k.sp_lu().map_err(|e| anyhow!("sparse LU: {e:?}"))?;
-        let b = Mat::<f64>::from_fn(m, 1, |i, _| 0.0 * i as f64);
-        let mut b = b;
-        for i in 0..n {
-            if index[i] != usize::MAX {
-                b[(index[i], 0)] = rhs[i];
+        let mut b = Mat::<f64>::zeros(m, 1);
+        for (i, &j) in index.iter().enumerate() {
+            if j != usize::MAX {
+                b[(j, 0)] = rhs[i];
             }
         }
         let x = lu.solve(&b);
-        Ok((0..n).map(|i| if index[i] == usize::MAX { 0.0 } else { x[(index[i], 0)] }).collect())
+        Ok(index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, 0)] }).collect())
+    }
+
+    /// Whether the free tangent is positive definite (its Cholesky factorisation exists):
+    /// the equilibrium is stable under prescribed plate displacement. A sign change of the
+    /// tangent's determinant along the path shows as a change of this flag.
+    pub fn is_stable(&self, triplets: &[(usize, usize, f64)]) -> bool {
+        let (index, m) = self.free_index();
+        match self.free_matrix(triplets, &index, m) {
+            Ok(k) => k.sp_cholesky(faer::Side::Lower).is_ok(),
+            Err(_) => false,
+        }
     }
 }
 
