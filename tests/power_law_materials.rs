@@ -3,8 +3,7 @@
 //! agree, and through the orchestrator (fields `s`, `tau_ratio`, `per_decade`, `prony`).
 
 mod common;
-use common::Scratch;
-use polars::prelude::*;
+use common::{column, Scratch};
 use repro::bem::solver::{solve, Mesh, Params};
 use repro::rheology::Spectrum;
 
@@ -94,17 +93,11 @@ stages:
     params: {k: 0.001, s: 0.5, V_PB: [1.0e4, 1.0e5, 1.0e6]}
 "#;
 
-fn column(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
-}
-
 #[test]
 fn power_law_sweeps_run_through_the_orchestrator() {
     let sc = Scratch::new("power_law");
-    sc.write("p.yaml", PIPELINE);
-    let (code, err, _) = sc.run("p.yaml", &[]);
-    assert_eq!(code, 0, "{err}");
-    let table = |name: &str| repro::pipeline::table::read_parquet(&sc.path(&format!("tables/{name}.parquet"))).unwrap();
+    sc.run_pipeline(PIPELINE);
+    let table = |name: &str| sc.table(name);
     let rolling = table("rolling");
     let (s, ft) = (column(&rolling, "s"), column(&rolling, "F_T"));
     assert_eq!(s.len(), 26);

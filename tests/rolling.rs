@@ -2,12 +2,7 @@
 //! (lambda = 3, k = 0.001, |W| = 0.1) and the Persson-Brener calibration of alpha on it.
 
 mod common;
-use common::Scratch;
-use polars::prelude::*;
-
-fn column(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
-}
+use common::{column, Scratch};
 
 const PIPELINE: &str = r#"
 stages:
@@ -27,10 +22,8 @@ stages:
 #[test]
 fn rolling_friction_has_the_persson_brener_regimes_and_ignores_the_load_sign() {
     let s = Scratch::new("rolling");
-    s.write("p.yaml", PIPELINE);
-    let (code, err, _) = s.run("p.yaml", &[]);
-    assert_eq!(code, 0, "{err}");
-    let table = |name: &str| repro::pipeline::table::read_parquet(&s.path(&format!("tables/{name}.parquet"))).unwrap();
+    s.run_pipeline(PIPELINE);
+    let table = |name: &str| s.table(name);
     let rolling = table("rolling");
     let (w, v0, ft) = (column(&rolling, "W"), column(&rolling, "V0"), column(&rolling, "F_T"));
     let converged: Vec<bool> =

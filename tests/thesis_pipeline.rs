@@ -3,12 +3,8 @@
 //! from the published Parquet tables.
 
 mod common;
-use common::Scratch;
+use common::{column, Scratch};
 use polars::prelude::*;
-
-fn column(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
-}
 
 fn strings(df: &DataFrame, name: &str) -> Vec<String> {
     df.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap_or_default().to_string()).collect()

@@ -1,7 +1,7 @@
 //! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
 //! (`bem.sweep`) and the fields of one point (`bem.profile`).
 
-use super::material::Material;
+use super::material::with_material_fields;
 use super::{check, finite};
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -10,6 +10,7 @@ use anyhow::Result;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+with_material_fields! {
 #[derive(Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 #[allow(non_snake_case)]
@@ -42,34 +43,10 @@ pub struct BemParams {
     /// The largest mesh of the refinement (default 16000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub n_max: Option<usize>,
-    /// Material: the exponent s in [0, 1) of the power-law retardation spectrum
-    /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; tau = tau2 in V0. Default: the
-    /// standard linear solid.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub s: Option<f64>,
-    /// Power-law spectrum: tau1/tau2 (default 1e-6).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tau_ratio: Option<f64>,
-    /// Power-law spectrum: bins per decade of its discretisation (default 8).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub per_decade: Option<usize>,
-    /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
-    /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub prony: Option<Vec<[f64; 2]>>,
+}
 }
 
 impl BemParams {
-    fn material(&self) -> Material<'_> {
-        Material {
-            k: self.k,
-            s: self.s,
-            tau_ratio: self.tau_ratio,
-            per_decade: self.per_decade,
-            prony: self.prony.as_deref(),
-        }
-    }
-
     fn physics(&self) -> Params {
         Params { spectrum: self.material().spectrum(), ..Params::sls(self.lambda, self.W, self.k, self.V0) }
     }

@@ -3,7 +3,47 @@
 //! of Eq. 5.24 when `s` is given, or a Maxwell-Wiechert relaxation Prony series.
 
 use crate::pipeline::kind::FieldError;
+
+/// Declares a kind's parameter struct with the material fields appended (`s`, `tau_ratio`,
+/// `per_decade`, `prony`; serde cannot flatten into a struct that denies unknown fields) and
+/// its `material()` view. The struct must have a field `k`.
+macro_rules! with_material_fields {
+    ($(#[$meta:meta])* pub struct $name:ident { $($(#[$fmeta:meta])* pub $field:ident : $ty:ty),* $(,)? }) => {
+        $(#[$meta])*
+        pub struct $name {
+            $($(#[$fmeta])* pub $field: $ty,)*
+            /// Material: the exponent s in [0, 1) of the power-law retardation spectrum
+            /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; then tau = tau2 (in V0 or
+            /// v0). Default: the standard linear solid.
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub s: Option<f64>,
+            /// Power-law spectrum: tau1/tau2 (default 1e-6).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub tau_ratio: Option<f64>,
+            /// Power-law spectrum: bins per decade of its discretisation (default 8).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub per_decade: Option<usize>,
+            /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
+            /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub prony: Option<Vec<[f64; 2]>>,
+        }
+
+        impl $name {
+            fn material(&self) -> $crate::stages::material::Material<'_> {
+                $crate::stages::material::Material {
+                    k: self.k,
+                    s: self.s,
+                    tau_ratio: self.tau_ratio,
+                    per_decade: self.per_decade,
+                    prony: self.prony.as_deref(),
+                }
+            }
+        }
+    };
+}
 use crate::rheology::Spectrum;
+pub(crate) use with_material_fields;
 
 /// A view of a kind's material fields.
 pub struct Material<'a> {

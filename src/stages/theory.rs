@@ -2,7 +2,7 @@
 //! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
 
 use super::check;
-use super::material::Material;
+use super::material::with_material_fields;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use crate::theory::{classical, line_contact, persson, persson_brener};
@@ -369,6 +369,7 @@ impl Kind for PerssonMax {
     }
 }
 
+with_material_fields! {
 #[derive(Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 #[allow(non_snake_case)]
@@ -377,33 +378,7 @@ pub struct PbParams {
     pub k: f64,
     /// V_PB = v / v0, v0 = c0 / (2 pi tau) (sweepable).
     pub V_PB: f64,
-    /// Material: the exponent s in [0, 1) of the power-law retardation spectrum
-    /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; tau = tau2 in v0. Default: the
-    /// standard linear solid.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub s: Option<f64>,
-    /// Power-law spectrum: tau1/tau2 (default 1e-6).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tau_ratio: Option<f64>,
-    /// Power-law spectrum: bins per decade of its discretisation (default 8).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub per_decade: Option<usize>,
-    /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
-    /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub prony: Option<Vec<[f64; 2]>>,
 }
-
-impl PbParams {
-    fn material(&self) -> Material<'_> {
-        Material {
-            k: self.k,
-            s: self.s,
-            tau_ratio: self.tau_ratio,
-            per_decade: self.per_decade,
-            prony: self.prony.as_deref(),
-        }
-    }
 }
 
 /// Persson–Brener trailing-edge energy release and friction (Eqs. 5.10–5.13), for the SLS

@@ -2,12 +2,18 @@
 //! runs of the `repro` binary whose JSON run report the tests read.
 #![allow(dead_code)]
 
+use polars::prelude::DataFrame;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 
 pub struct Scratch {
     pub dir: PathBuf,
+}
+
+/// A numeric column of a published table.
+pub fn column(df: &DataFrame, name: &str) -> Vec<f64> {
+    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
 }
 
 impl Scratch {
@@ -57,6 +63,18 @@ impl Scratch {
         let mut args = vec!["run", pipeline, "-q"];
         args.extend_from_slice(extra);
         self.command(&args).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().unwrap()
+    }
+
+    /// Writes `yaml` as p.yaml and runs it, which must succeed.
+    pub fn run_pipeline(&self, yaml: &str) {
+        self.write("p.yaml", yaml);
+        let (code, err, _) = self.run("p.yaml", &[]);
+        assert_eq!(code, 0, "{err}");
+    }
+
+    /// A stage's published table.
+    pub fn table(&self, stage: &str) -> DataFrame {
+        repro::pipeline::table::read_parquet(&self.path(&format!("tables/{stage}.parquet"))).unwrap()
     }
 
     pub fn read(&self, rel: &str) -> Vec<u8> {
