@@ -31,6 +31,11 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("bem.pulloff", json!({"lambda": 1.0, "k": 0.1, "V": 1.0, "n": 64})),
         ("pb.calibrate", json!({"from": "rolling"})),
         ("util.fail", json!({"message": "m", "x": 2})),
+        ("fem.mesh", json!({"R": 15.0, "h": 1.0, "n_meridian": 8, "n_thickness": 2})),
+        (
+            "fem.indent",
+            json!({"shell": {"R": 15.0, "h": 1.0, "n_meridian": 12, "n_thickness": 2}, "delta_max": 0.02, "steps": 2}),
+        ),
         (
             "bem.maxima",
             json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0_range": [0.1, 10.0], "grid": 4, "log_tol": 0.2, "n": 40, "half_length": 5.0}),

@@ -2,6 +2,7 @@
 //! Each kind binds one physics function to typed, validated parameters and a table.
 
 pub mod bem;
+pub mod fem;
 pub mod figure;
 pub mod fit;
 pub mod material;
@@ -17,6 +18,7 @@ pub fn registry() -> Registry {
     let mut r = Registry::new();
     theory::register(&mut r);
     bem::register(&mut r);
+    fem::register(&mut r);
     pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
