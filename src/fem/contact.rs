@@ -55,6 +55,22 @@ impl Plate {
         Plate { weights, stiffness: penalty * e / mesh.thickness }
     }
 
+    /// The penalty energy Sum k_n w_a d_a^2 / 2 of the penetrations.
+    pub fn energy(&self, mesh: &ShellMesh, u: &[f64], z_plate: f64) -> f64 {
+        mesh.outer
+            .iter()
+            .zip(&self.weights)
+            .map(|(&a, &w)| {
+                let d = mesh.nodes[a][1] + u[2 * a + 1] - z_plate;
+                if d > 0.0 {
+                    0.5 * self.stiffness * w * d * d
+                } else {
+                    0.0
+                }
+            })
+            .sum()
+    }
+
     /// Contact forces (added to `f_ext`, full dof vector), tangent entries (pushed to
     /// `triplets`) and the state, for the plate at z = z_plate and displacements u.
     pub fn apply(

@@ -85,6 +85,19 @@ impl Model {
         Some((f, triplets))
     }
 
+    /// The stored strain energy (None if an element is inverted).
+    pub fn strain_energy(&self, u: &[f64]) -> Option<f64> {
+        self.mesh
+            .elements
+            .iter()
+            .map(|el| {
+                let x: [[f64; 2]; 8] = std::array::from_fn(|a| self.mesh.nodes[el[a]]);
+                let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
+                super::element::energy(&x, &ue, self.mu, self.lambda)
+            })
+            .sum()
+    }
+
     /// Numbering of the free dofs (usize::MAX for fixed ones) and their count.
     fn free_index(&self) -> (Vec<usize>, usize) {
         let mut index = vec![usize::MAX; self.n_dofs()];
