@@ -35,21 +35,10 @@ pub struct Plate {
 
 impl Plate {
     pub fn new(mesh: &ShellMesh, e: f64, penalty: f64) -> Plate {
-        let outer = &mesh.outer;
-        let mut weights = vec![0.0; outer.len()];
-        let gauss = [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
-        for e_ in 0..(outer.len() - 1) / 2 {
-            let x: Vec<[f64; 2]> = (0..3).map(|k| mesh.nodes[outer[2 * e_ + k]]).collect();
-            for &(xi, w) in &gauss {
-                let n = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
-                let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
-                let r: f64 = (0..3).map(|k| n[k] * x[k][0]).sum();
-                let dr: f64 = (0..3).map(|k| dn[k] * x[k][0]).sum();
-                let dz: f64 = (0..3).map(|k| dn[k] * x[k][1]).sum();
-                let ds = (dr * dr + dz * dz).sqrt();
-                for k in 0..3 {
-                    weights[2 * e_ + k] += n[k] * 2.0 * std::f64::consts::PI * r * ds * w;
-                }
+        let mut weights = vec![0.0; mesh.outer.len()];
+        for q in mesh.outer_edge_points() {
+            for k in 0..3 {
+                weights[q.outer[k]] += q.shape[k] * 2.0 * std::f64::consts::PI * q.r * q.ds * q.weight;
             }
         }
         Plate { weights, stiffness: penalty * e / mesh.thickness }

@@ -48,7 +48,7 @@ pub fn shape(xi: f64, eta: f64) -> ([f64; 8], [[f64; 2]; 8]) {
 }
 
 /// 3-point Gauss-Legendre rule on [-1, 1].
-const GAUSS: [(f64, f64); 3] =
+pub const GAUSS: [(f64, f64); 3] =
     [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
 
 /// A Gauss point in the reference configuration: shape values, their R and Z derivatives,

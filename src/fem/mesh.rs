@@ -46,7 +46,44 @@ pub fn graded_angles(n: usize, grading: f64) -> Vec<f64> {
     out
 }
 
+/// A Gauss point of a quadratic edge of the outer surface (reference configuration).
+pub struct EdgePoint {
+    /// Positions of the edge's three nodes in `outer` (corner, mid-side, corner).
+    pub outer: [usize; 3],
+    /// Their quadratic shape functions at the point.
+    pub shape: [f64; 3],
+    /// r at the point, dr/dxi, ds/dxi (meridian arc length) and the Gauss weight.
+    pub r: f64,
+    pub dr: f64,
+    pub ds: f64,
+    pub weight: f64,
+}
+
 impl ShellMesh {
+    /// The 3-point Gauss rule along every outer edge (for surface loads and contact areas).
+    pub fn outer_edge_points(&self) -> Vec<EdgePoint> {
+        let mut out = Vec::new();
+        for e in 0..(self.outer.len() - 1) / 2 {
+            let ids = [2 * e, 2 * e + 1, 2 * e + 2];
+            let x: [[f64; 2]; 3] = std::array::from_fn(|k| self.nodes[self.outer[ids[k]]]);
+            for &(xi, weight) in &super::element::GAUSS {
+                let shape = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
+                let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
+                let along = |c: usize, f: &[f64; 3]| (0..3).map(|k| f[k] * x[k][c]).sum::<f64>();
+                let (dr, dz) = (along(0, &dn), along(1, &dn));
+                out.push(EdgePoint {
+                    outer: ids,
+                    shape,
+                    r: along(0, &shape),
+                    dr,
+                    ds: (dr * dr + dz * dz).sqrt(),
+                    weight,
+                });
+            }
+        }
+        out
+    }
+
     /// A hemispherical shell of inner radius `radius` and thickness `thickness`, with
     /// `n_meridian` x `n_thickness` elements, sizes along the meridian growing by `grading`
     /// from apex to equator.

@@ -157,21 +157,10 @@ impl Model {
 /// outer surface, per unit projected area: F_z = -Int N p 2 pi r dr along each outer edge.
 pub fn outer_pressure_forces(mesh: &ShellMesh, p: impl Fn(f64) -> f64) -> Vec<f64> {
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    let outer = &mesh.outer;
-    // Outer edges: consecutive triples (corner, mid-side, corner) along the meridian.
-    for e in 0..(outer.len() - 1) / 2 {
-        let ids = [outer[2 * e], outer[2 * e + 1], outer[2 * e + 2]];
-        let r: Vec<f64> = ids.iter().map(|&a| mesh.nodes[a][0]).collect();
-        for &(xi, w) in &[(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)]
-        {
-            let n = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
-            let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
-            let rr: f64 = (0..3).map(|k| n[k] * r[k]).sum();
-            let drdxi: f64 = (0..3).map(|k| dn[k] * r[k]).sum();
-            let load = p(rr) * 2.0 * std::f64::consts::PI * rr * drdxi * w;
-            for k in 0..3 {
-                f[2 * ids[k] + 1] -= n[k] * load;
-            }
+    for q in mesh.outer_edge_points() {
+        let load = p(q.r) * 2.0 * std::f64::consts::PI * q.r * q.dr * q.weight;
+        for k in 0..3 {
+            f[2 * mesh.outer[q.outer[k]] + 1] -= q.shape[k] * load;
         }
     }
     f
