@@ -60,6 +60,19 @@ impl Plate {
             .sum()
     }
 
+    /// The derivative of the residual f_int - f_contact with respect to the plate
+    /// displacement delta at fixed u: + k_n w_a on the z dof of every penetrating node
+    /// (pushing the plate down by d delta raises the penetration by d delta).
+    pub fn delta_derivative(&self, mesh: &ShellMesh, state: &ContactState) -> Vec<f64> {
+        let mut q = vec![0.0; 2 * mesh.n_nodes()];
+        for (k, &a) in mesh.outer.iter().enumerate() {
+            if state.active[k] {
+                q[2 * a + 1] = self.stiffness * self.weights[k];
+            }
+        }
+        q
+    }
+
     /// Contact forces (added to `f_ext`, full dof vector), tangent entries (pushed to
     /// `triplets`) and the state, for the plate at z = z_plate and displacements u.
     pub fn apply(

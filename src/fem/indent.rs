@@ -43,26 +43,31 @@ pub fn apex_z(model: &Model) -> f64 {
 }
 
 /// The free residual at one configuration, with the tangent and the contact state.
-struct Evaluation {
-    residual: Vec<f64>,
-    tangent: Triplets,
-    contact: ContactState,
-    norm: f64,
+pub(crate) struct Evaluation {
+    pub residual: Vec<f64>,
+    pub tangent: Triplets,
+    pub contact: ContactState,
+    /// Max-norm of the residual.
+    pub norm: f64,
+}
+
+/// Residual f_int - f_contact on the free dofs (zero on the fixed ones), its tangent and the
+/// contact state, for displacements `u` and the plate at `delta`; None if an element is
+/// inverted.
+pub(crate) fn evaluate(model: &Model, plate: &Plate, delta: f64, u: &[f64]) -> Option<Evaluation> {
+    let (fint, mut trip) = model.assemble(u)?;
+    let mut fext = vec![0.0; model.n_dofs()];
+    let state = plate.apply(&model.mesh, u, apex_z(model) - delta, &mut fext, &mut trip);
+    let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
+    let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    Some(Evaluation { residual: r, tangent: trip, contact: state, norm })
 }
 
 /// Newton at plate displacement `delta` from displacements `u0`.
 pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], opt: Options) -> Step {
-    let z_plate = apex_z(model) - delta;
     let scale = e * model.mesh.thickness.powi(2);
     let mut u = u0.to_vec();
-    let residual_of = |u: &[f64]| -> Option<Evaluation> {
-        let (fint, mut trip) = model.assemble(u)?;
-        let mut fext = vec![0.0; model.n_dofs()];
-        let state = plate.apply(&model.mesh, u, z_plate, &mut fext, &mut trip);
-        let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
-        let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        Some(Evaluation { residual: r, tangent: trip, contact: state, norm })
-    };
+    let residual_of = |u: &[f64]| evaluate(model, plate, delta, u);
     let Some(mut cur) = residual_of(&u) else {
         return Step {
             delta,

@@ -1,8 +1,11 @@
 //! Finite element model of a thin hemispherical shell pressed by a rigid plate (thesis
 //! Chapter 3): axisymmetric 8-node solid elements, geometrically nonlinear.
 
+pub mod arclength;
 pub mod contact;
+pub mod cycle;
 pub mod element;
 pub mod indent;
 pub mod mesh;
+pub mod stability;
 pub mod system;

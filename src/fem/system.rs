@@ -128,17 +128,26 @@ impl Model {
 
     /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones), K given as triplets.
     pub fn solve(&self, triplets: &[(usize, usize, f64)], rhs: &[f64]) -> Result<Vec<f64>> {
+        Ok(self.solve_many(triplets, &[rhs])?.remove(0))
+    }
+
+    /// Solves K x = b for several right-hand sides with one factorisation.
+    pub fn solve_many(&self, triplets: &[(usize, usize, f64)], rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
         let (index, m) = self.free_index();
         let k = self.free_matrix(triplets, &index, m)?;
         let lu = k.sp_lu().map_err(|e| anyhow!("sparse LU: {e:?}"))?;
-        let mut b = Mat::<f64>::zeros(m, 1);
-        for (i, &j) in index.iter().enumerate() {
-            if j != usize::MAX {
-                b[(j, 0)] = rhs[i];
+        let mut b = Mat::<f64>::zeros(m, rhs.len());
+        for (c, col) in rhs.iter().enumerate() {
+            for (i, &j) in index.iter().enumerate() {
+                if j != usize::MAX {
+                    b[(j, c)] = col[i];
+                }
             }
         }
         let x = lu.solve(&b);
-        Ok(index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, 0)] }).collect())
+        Ok((0..rhs.len())
+            .map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect())
+            .collect())
     }
 
     /// Whether the free tangent is positive definite (its Cholesky factorisation exists):

@@ -1,0 +1,353 @@
+//! A load-unload cycle under prescribed plate displacement, as the experiments of thesis
+//! Section 3.3 see it (Figs. 3.2, 3.4-3.5: loading solid, unloading dashed): the plate goes
+//! down to delta_max and back in equal steps; the state follows its branch until the branch
+//! loses stability (loading: the flattened state, whose interior then lifts off and inverts,
+//! `stability`) or ends (unloading: the inverted state past its limit point), and then jumps
+//! at that delta to the other branch. Both events are located by bisection in delta.
+//!
+//! Reported: F_buckling (the largest force before the snap) and its delta, the snap-back
+//! delta on unloading, and the work of the plate on each leg, whose difference is the
+//! hysteresis loop area W = closed integral of F d(delta) (zero without a jump: the model is
+//! elastic and frictionless).
+
+use super::arclength::{continue_path, ArcOptions};
+use super::contact::Plate;
+use super::indent::{apex_z, dimple, solve_at, Options, Step};
+use super::stability::unilaterally_stable;
+use super::system::Model;
+
+/// Settings of the cycle (lengths in the mesh's units).
+#[derive(Clone, Copy, Debug)]
+pub struct CycleOptions {
+    pub delta_max: f64,
+    /// Equal steps on each leg.
+    pub steps: usize,
+    /// Halvings of a step that fails to converge.
+    pub max_cuts: u32,
+    /// Bisections locating each event (the event's delta is then known to
+    /// delta_max / steps / 2^bisections).
+    pub bisections: u32,
+    /// Pressure threshold of the stability test (`stability::LIFT_THRESHOLD`).
+    pub lift_threshold: f64,
+    /// Also trace the unstable branch past the inverted branch's limit point (arc length).
+    pub trace_unstable: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Leg {
+    Loading,
+    Unloading,
+}
+
+/// One state of the cycle.
+#[derive(Clone, Debug)]
+pub struct CyclePoint {
+    pub step: Step,
+    pub leg: Leg,
+    /// The apex has left the plate by more than half a thickness (inverted cap).
+    pub inverted: bool,
+}
+
+/// A jump between branches at fixed delta.
+#[derive(Clone, Copy, Debug)]
+pub struct Jump {
+    pub delta: f64,
+    pub force_before: f64,
+    pub force_after: f64,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Cycle {
+    pub points: Vec<CyclePoint>,
+    /// Loading snap-through: delta and force F_buckling just before, force just after.
+    pub buckling: Option<Jump>,
+    /// Unloading snap-back from the inverted to the flattened branch.
+    pub snap_back: Option<Jump>,
+    /// Int F d(delta) on the loading and on the unloading leg (trapezoids; jumps are
+    /// vertical). Their difference is the dissipated energy.
+    pub work_loading: f64,
+    pub work_unloading: f64,
+    /// Every step converged.
+    pub complete: bool,
+    /// The unstable branch from the limit point of the inverted branch (if traced), in the
+    /// order of the arc length.
+    pub unstable: Vec<Step>,
+}
+
+impl Cycle {
+    pub fn dissipated(&self) -> f64 {
+        self.work_loading - self.work_unloading
+    }
+}
+
+fn is_inverted(model: &Model, s: &Step) -> bool {
+    let apex = model.mesh.outer[0];
+    let z = model.mesh.nodes[apex][1] + s.u[2 * apex + 1];
+    z < apex_z(model) - s.delta - 0.5 * model.mesh.thickness
+}
+
+/// Newton from the flattened state `s` pushed in by a central dimple: the inverted state at
+/// the same delta, if Newton finds one.
+fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<Step> {
+    let r_mid = model.mesh.radius + 0.5 * model.mesh.thickness;
+    let a = 0.8 * s.contact.radius;
+    let start = dimple(model, &s.u, a, a * a / r_mid);
+    let inv = solve_at(model, plate, e, s.delta, &start, Options { max_iterations: 60, ..Options::default() });
+    (inv.converged && is_inverted(model, &inv)).then_some(inv)
+}
+
+fn work(points: &[CyclePoint]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| 0.5 * (w[0].step.contact.force + w[1].step.contact.force) * (w[1].step.delta - w[0].step.delta).abs())
+        .sum()
+}
+
+/// Runs the cycle from the reference state.
+pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> Cycle {
+    let base = opt.delta_max / opt.steps as f64;
+    let stable = |s: &Step| unilaterally_stable(model, plate, &s.u, &s.contact, opt.lift_threshold, &[]);
+    let mut cycle = Cycle { complete: true, ..Default::default() };
+    let zero = Step {
+        delta: 0.0,
+        u: vec![0.0; model.n_dofs()],
+        contact: Default::default(),
+        iterations: 0,
+        residual: 0.0,
+        converged: true,
+        stable: true,
+    };
+    let mut loading = vec![CyclePoint { step: zero.clone(), leg: Leg::Loading, inverted: false }];
+    // Loading.
+    let mut cur = zero.clone();
+    let mut inverted = false;
+    let mut dd = base;
+    let mut cuts = 0;
+    while cur.delta < opt.delta_max * (1.0 - 1e-12) {
+        let target = (cur.delta + dd).min(opt.delta_max);
+        let mut s = solve_at(model, plate, e, target, &cur.u, Options::default());
+        if !s.converged {
+            if cuts < opt.max_cuts {
+                cuts += 1;
+                dd *= 0.5;
+                continue;
+            }
+            loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
+            cycle.complete = false;
+            break;
+        }
+        s.stable = stable(&s);
+        if !inverted && !s.stable {
+            // Bisect for the last stable flattened state, then snap to the inverted branch.
+            let (mut lo, mut hi) = (cur.clone(), s.clone());
+            for _ in 0..opt.bisections {
+                let mut mid = solve_at(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo.u, Options::default());
+                if !mid.converged {
+                    break;
+                }
+                mid.stable = stable(&mid);
+                if mid.stable {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            if let Some(mut inv) = invert(model, plate, e, &hi) {
+                if lo.delta > cur.delta {
+                    loading.push(CyclePoint { step: lo.clone(), leg: Leg::Loading, inverted: false });
+                }
+                inv.stable = stable(&inv);
+                cycle.buckling =
+                    Some(Jump { delta: hi.delta, force_before: lo.contact.force, force_after: inv.contact.force });
+                inverted = true;
+                s = inv;
+            }
+        }
+        if inverted && !is_inverted(model, &s) {
+            inverted = false;
+        }
+        loading.push(CyclePoint { step: s.clone(), leg: Leg::Loading, inverted });
+        cur = s;
+        if cuts > 0 {
+            cuts -= 1;
+            dd = (2.0 * dd).min(base);
+        }
+    }
+    cycle.work_loading = work(&loading);
+    // Unloading, warm-started from the loading states once back on the flattened branch.
+    let flattened_near = |delta: f64| -> Vec<f64> {
+        loading
+            .iter()
+            .filter(|p| !p.inverted && p.step.converged)
+            .min_by(|a, b| (a.step.delta - delta).abs().total_cmp(&(b.step.delta - delta).abs()))
+            .map(|p| p.step.u.clone())
+            .unwrap_or_else(|| vec![0.0; model.n_dofs()])
+    };
+    let mut unloading = vec![CyclePoint { step: cur.clone(), leg: Leg::Unloading, inverted }];
+    if cycle.complete && inverted {
+        // The inverted branch by arc length down to its limit point (prescribed-delta Newton
+        // stalls there, and on the ring contact's changes of status).
+        let h = model.mesh.thickness;
+        let arc = ArcOptions {
+            ds: 0.02 * h,
+            ds_min: 1e-5 * h,
+            ds_max: 0.03 * h,
+            max_points: 20 * opt.steps,
+            newton: Options { max_iterations: 25, ..Options::default() },
+            target_iterations: 5,
+        };
+        // Past the limit point the path is the unstable branch back towards the flattened
+        // one; traced (if asked) up to the loading's snap-through.
+        let until = if opt.trace_unstable { cycle.buckling.map_or(opt.delta_max, |b| b.delta) } else { 0.0 };
+        let (path, ok) = continue_path(model, plate, e, &cur, -1.0, arc, |p| {
+            (p.d_delta >= 0.0 && p.step.delta >= until) || (p.d_delta < 0.0 && !is_inverted(model, &p.step))
+        });
+        let mut last = cur.clone();
+        let mut past_fold = false;
+        for p in path {
+            past_fold |= p.d_delta >= 0.0;
+            if past_fold {
+                let mut s = p.step;
+                s.stable = stable(&s);
+                cycle.unstable.push(s);
+                continue;
+            }
+            if !is_inverted(model, &p.step) {
+                break;
+            }
+            last = p.step.clone();
+            let mut s = p.step;
+            s.stable = stable(&s);
+            unloading.push(CyclePoint { step: s, leg: Leg::Unloading, inverted: true });
+        }
+        if !ok && !past_fold {
+            cycle.complete = false;
+        }
+        // Snap back at the limit point to the flattened branch.
+        let mut back = solve_at(model, plate, e, last.delta, &flattened_near(last.delta), Options::default());
+        if back.converged && !is_inverted(model, &back) {
+            back.stable = stable(&back);
+            cycle.snap_back =
+                Some(Jump { delta: last.delta, force_before: last.contact.force, force_after: back.contact.force });
+            unloading.push(CyclePoint { step: back.clone(), leg: Leg::Unloading, inverted: false });
+            inverted = false;
+            cur = back;
+        } else {
+            unloading.push(CyclePoint { step: back, leg: Leg::Unloading, inverted: true });
+            cycle.complete = false;
+        }
+    }
+    // The flattened branch back to delta = 0 through the loading's plate displacements,
+    // each Newton started from the loading state there (the same state, the model being
+    // elastic and frictionless: Newton confirms it in a few iterations) or, failing that,
+    // from the previous unloading state.
+    let targets: Vec<Step> = loading
+        .iter()
+        .rev()
+        .filter(|p| !p.inverted && p.step.converged && p.step.delta < cur.delta)
+        .map(|p| p.step.clone())
+        .collect();
+    for warm in targets {
+        if !cycle.complete || inverted {
+            break;
+        }
+        let mut s = solve_at(model, plate, e, warm.delta, &warm.u, Options::default());
+        if !s.converged {
+            s = solve_at(model, plate, e, warm.delta, &cur.u, Options { max_iterations: 60, ..Options::default() });
+        }
+        if !s.converged {
+            unloading.push(CyclePoint { step: s, leg: Leg::Unloading, inverted });
+            cycle.complete = false;
+            break;
+        }
+        s.stable = stable(&s);
+        unloading.push(CyclePoint { step: s.clone(), leg: Leg::Unloading, inverted });
+        cur = s;
+    }
+    cycle.work_unloading = work(&unloading);
+    cycle.points = loading;
+    cycle.points.extend(unloading);
+    cycle
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::mesh::ShellMesh;
+    use crate::fem::system::Base;
+
+    const R: f64 = 15.0;
+    const H: f64 = 1.0;
+    const E: f64 = 1.3;
+
+    fn thesis_shell() -> (Model, Plate) {
+        let model = Model::new(ShellMesh::hemisphere(R, H, 60, 3, 8.0), E, 0.45, Base::Clamped);
+        let plate = Plate::new(&model.mesh, E, 1000.0);
+        (model, plate)
+    }
+
+    fn options(delta_max: f64) -> CycleOptions {
+        CycleOptions {
+            delta_max: delta_max * R,
+            steps: (delta_max * 100.0).round() as usize,
+            max_cuts: 6,
+            bisections: 6,
+            lift_threshold: crate::fem::stability::LIFT_THRESHOLD,
+            trace_unstable: true,
+        }
+    }
+
+    fn fbar(f: f64) -> f64 {
+        f * R / (E * H.powi(3))
+    }
+
+    #[test]
+    fn the_shell_snaps_through_on_loading_and_back_on_unloading() {
+        // Thesis geometry (R = 15, h = 1, E = 1.3, nu = 0.45, clamped), to delta/R = 0.3 and
+        // back. Measured (60 x 3 elements): snap-through at delta/R = 0.1944 from
+        // F R/(E h^3) = 9.29 to 7.59 (inverted); snap-back at the inverted branch's limit
+        // point delta/R = 0.1735 from 7.66 up to 7.95; loop area W = 0.030 N mm.
+        let (model, plate) = thesis_shell();
+        let c = load_unload(&model, &plate, E, options(0.3));
+        assert!(c.complete);
+        let b = c.buckling.expect("no snap-through");
+        assert!((b.delta / R - 0.1944).abs() < 0.003, "{b:?}");
+        assert!((fbar(b.force_before) - 9.29).abs() < 0.1 && (fbar(b.force_after) - 7.59).abs() < 0.1, "{b:?}");
+        let back = c.snap_back.expect("no snap-back");
+        assert!((back.delta / R - 0.1735).abs() < 0.001, "{back:?}");
+        assert!(fbar(back.force_after) - fbar(back.force_before) > 0.2, "{back:?}");
+        // The loading leg: flattened, then inverted after the snap; forces before it rise.
+        let loading: Vec<_> = c.points.iter().filter(|p| p.leg == Leg::Loading).collect();
+        let first_inverted = loading.iter().position(|p| p.inverted).unwrap();
+        assert!(loading[..first_inverted].windows(2).all(|w| w[1].step.contact.force > w[0].step.contact.force));
+        assert!(loading[first_inverted..].iter().all(|p| p.inverted && p.step.stable));
+        // Unloading on the flattened branch retraces the loading states (elastic,
+        // frictionless): the same forces at the same delta.
+        for p in c.points.iter().filter(|p| p.leg == Leg::Unloading && !p.inverted) {
+            if let Some(l) = loading.iter().find(|l| !l.inverted && l.step.delta == p.step.delta) {
+                assert!((p.step.contact.force - l.step.contact.force).abs() < 1e-6 * l.step.contact.force.max(1e-9));
+            }
+        }
+        // The hysteresis loop: between the two jumps the loading force (flattened) exceeds
+        // the unloading one (inverted), W = 0.030 N mm.
+        assert!((c.dissipated() - 0.030).abs() < 0.005, "W = {}", c.dissipated());
+        // The unstable branch joins the limit point to the snap-through: unstable, delta
+        // rising, force between the inverted and the flattened branches.
+        assert!(c.unstable.len() > 5);
+        assert!(c.unstable.iter().all(|s| !s.stable));
+        assert!(c.unstable.windows(2).all(|w| w[1].delta > w[0].delta));
+        let end = c.unstable.last().unwrap();
+        assert!(end.delta >= b.delta && fbar(end.contact.force) > 9.0, "{}", end.delta / R);
+    }
+
+    #[test]
+    fn without_a_snap_the_cycle_returns_the_work() {
+        // Loading to delta/R = 0.15 (before any instability) and back: no jump, and the
+        // work of the plate comes back to 1e-9 of itself (the legs pass the same states).
+        let (model, plate) = thesis_shell();
+        let c = load_unload(&model, &plate, E, options(0.15));
+        assert!(c.complete && c.buckling.is_none() && c.snap_back.is_none());
+        assert!(c.dissipated().abs() < 1e-9 * c.work_loading, "{} of {}", c.dissipated(), c.work_loading);
+        assert!(c.points.iter().all(|p| p.step.stable && !p.inverted));
+    }
+}
