@@ -37,6 +37,11 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
             json!({"shell": {"R": 15.0, "h": 1.0, "n_meridian": 12, "n_thickness": 2}, "delta_max": 0.02, "steps": 2}),
         ),
         (
+            "fem.profile",
+            json!({"cycle": {"shell": {"R": 15.0, "h": 1.0, "n_meridian": 12, "n_thickness": 2}, "delta_max": 0.02, "steps": 2},
+                   "points": [{"label": "a", "delta": 0.02}]}),
+        ),
+        (
             "bem.maxima",
             json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0_range": [0.1, 10.0], "grid": 4, "log_tol": 0.2, "n": 40, "half_length": 5.0}),
         ),

@@ -31,6 +31,8 @@ pub struct CycleOptions {
     pub lift_threshold: f64,
     /// Also trace the unstable branch past the inverted branch's limit point (arc length).
     pub trace_unstable: bool,
+    /// Run the unloading leg (false: loading only).
+    pub unload: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -174,6 +176,10 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
     }
     cycle.work_loading = work(&loading);
+    if !opt.unload {
+        cycle.points = loading;
+        return cycle;
+    }
     // Unloading, warm-started from the loading states once back on the flattened branch.
     let flattened_near = |delta: f64| -> Vec<f64> {
         loading
@@ -294,6 +300,7 @@ mod tests {
             bisections: 6,
             lift_threshold: crate::fem::stability::LIFT_THRESHOLD,
             trace_unstable: true,
+            unload: true,
         }
     }
 

@@ -5,7 +5,8 @@
 
 use super::{check, finite};
 use crate::fem::contact::Plate;
-use crate::fem::indent::{dimple, load_path, solve_at, Options, Step};
+use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Leg};
+use crate::fem::indent::Step;
 use crate::fem::mesh::ShellMesh;
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -21,13 +22,13 @@ fn default_nu() -> f64 {
     0.45
 }
 fn default_n_meridian() -> usize {
-    80
+    100
 }
 fn default_n_thickness() -> usize {
     4
 }
 fn default_grading() -> f64 {
-    8.0
+    3.0
 }
 
 /// The shell and its mesh (thesis Section 3.2: E = 1.3 N/mm^2, nu = 0.45).
@@ -45,12 +46,13 @@ pub struct ShellParams {
     /// Poisson's ratio, default 0.45.
     #[serde(default = "default_nu")]
     pub nu: f64,
-    /// Elements along the meridian (default 80) and through the thickness (default 4).
+    /// Elements along the meridian (default 100) and through the thickness (default 4).
     #[serde(default = "default_n_meridian")]
     pub n_meridian: usize,
     #[serde(default = "default_n_thickness")]
     pub n_thickness: usize,
-    /// Ratio of the last to the first element size along the meridian (default 8).
+    /// Ratio of the last to the first element size along the meridian (default 3: fine enough
+    /// at the apex for the first contact, and at r ~ 0.6 R for the inverted state's ring).
     #[serde(default = "default_grading")]
     pub grading: f64,
 }
@@ -78,7 +80,7 @@ pub struct FemMesh;
 
 impl Kind for FemMesh {
     const NAME: &'static str = "fem.mesh";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 3: the meridian mesh of a hemispherical shell (8-node elements), one row per node";
     type Params = ShellParams;
@@ -109,7 +111,14 @@ impl Kind for FemMesh {
 fn default_penalty() -> f64 {
     1000.0
 }
+fn default_lift_threshold() -> f64 {
+    crate::fem::stability::LIFT_THRESHOLD
+}
+fn default_bisections() -> u32 {
+    6
+}
 
+/// The shell, its support, the contact and the loading of one indentation cycle.
 #[derive(Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IndentParams {
@@ -123,8 +132,15 @@ pub struct IndentParams {
     pub penalty: f64,
     /// Largest plate displacement delta/R.
     pub delta_max: f64,
-    /// Equal load steps to delta_max.
+    /// Equal load steps to delta_max (and back).
     pub steps: usize,
+    /// Stability test: contact nodes pressed above this fraction of the peak pressure are
+    /// held against lifting off, the others are free to (default 0.02).
+    #[serde(default = "default_lift_threshold")]
+    pub lift_threshold: f64,
+    /// Bisections locating the snap-through in delta (default 6: to steps/64).
+    #[serde(default = "default_bisections")]
+    pub bisections: u32,
 }
 
 #[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default)]
@@ -135,75 +151,230 @@ pub enum Support {
     Roller,
 }
 
-/// The flattened path from the reference state and, at each of its plate displacements,
-/// the inverted state reached from it through a central dimple (Pogorelov's mirror
-/// buckling), where Newton finds one distinct from the flattened state.
+impl IndentParams {
+    fn validate(&self, e: &mut Vec<FieldError>) {
+        let mut shell = Vec::new();
+        self.shell.validate(&mut shell);
+        e.extend(prefixed("shell", shell));
+        check::positive(e, "penalty", self.penalty);
+        check::in_open(e, "delta_max", self.delta_max, 0.0, 1.0, "delta/R");
+        check::at_least(e, "steps", self.steps, 1);
+        check::in_open(e, "lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
+    }
+
+    fn model(&self) -> (Model, Plate) {
+        let base = match self.base {
+            Support::Clamped => Base::Clamped,
+            Support::Roller => Base::Roller,
+        };
+        let sh = &self.shell;
+        let model = Model::new(sh.mesh(), sh.E, sh.nu, base);
+        let plate = Plate::new(&model.mesh, sh.E, self.penalty);
+        (model, plate)
+    }
+
+    fn cycle(&self, model: &Model, plate: &Plate, delta_max: f64, unload: bool) -> Cycle {
+        let opt = CycleOptions {
+            delta_max: delta_max * self.shell.R,
+            steps: self.steps,
+            max_cuts: 8,
+            bisections: self.bisections,
+            lift_threshold: self.lift_threshold,
+            trace_unstable: unload,
+            unload,
+        };
+        load_unload(model, plate, self.shell.E, opt)
+    }
+}
+
+/// A load-unload cycle under prescribed plate displacement (thesis Figs. 3.2-3.3): the
+/// flattened branch until its interior lifts off, the snap-through to the inverted branch,
+/// unloading on it to its limit point, the snap-back, and the unstable branch between.
 pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
-        "Chapter 3: a shell pressed by a rigid plate under prescribed displacement; flattened and inverted branches";
+        "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     type Params = IndentParams;
 
     fn validate(p: &IndentParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        p.shell.validate(&mut e);
-        check::positive(&mut e, "penalty", p.penalty);
-        check::in_open(&mut e, "delta_max", p.delta_max, 0.0, 1.0, "delta/R");
-        check::at_least(&mut e, "steps", p.steps, 1);
+        p.validate(&mut e);
         e
     }
 
     fn run(p: &IndentParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let base = match p.base {
-            Support::Clamped => Base::Clamped,
-            Support::Roller => Base::Roller,
-        };
+        let (model, plate) = p.model();
+        let c = p.cycle(&model, &plate, p.delta_max, true);
         let sh = &p.shell;
-        let model = Model::new(sh.mesh(), sh.E, sh.nu, base);
-        let plate = Plate::new(&model.mesh, sh.E, p.penalty);
-        let path = load_path(&model, &plate, sh.E, p.delta_max * sh.R, p.steps, 8);
-        let mut rows: Vec<(&str, Step)> = Vec::new();
-        let r_mid = sh.R + 0.5 * sh.h;
-        let apex = model.mesh.outer[0];
-        for s in &path {
-            rows.push(("flattened", s.clone()));
-            if !s.converged {
-                continue;
-            }
-            let a = 0.8 * s.contact.radius;
-            let start = dimple(&model, &s.u, a, a * a / r_mid);
-            let inv =
-                solve_at(&model, &plate, sh.E, s.delta, &start, Options { max_iterations: 60, ..Options::default() });
-            // Distinct: the apex has left the plate (inverted cap).
-            let z_plate = sh.R + sh.h - s.delta;
-            let z_apex = model.mesh.nodes[apex][1] + inv.u[2 * apex + 1];
-            if inv.converged && z_apex < z_plate - 0.5 * sh.h {
-                rows.push(("inverted", inv));
-            }
+        let mut rows: Vec<(&str, &str, &Step)> = Vec::new();
+        for q in &c.points {
+            let leg = if q.leg == Leg::Loading { "loading" } else { "unloading" };
+            rows.push((leg, if q.inverted { "inverted" } else { "flattened" }, &q.step));
+        }
+        for s in &c.unstable {
+            rows.push(("unstable", "unstable", s));
         }
         let f_bar = sh.R / (sh.E * sh.h.powi(3));
-        let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, s)| finite(f(s))).collect::<Vec<f64>>();
+        let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, _, s)| finite(f(s))).collect::<Vec<f64>>();
+        let n = rows.len();
+        let leg_id = |l: &str| match l {
+            "loading" => 0,
+            "unloading" => 1,
+            _ => 2,
+        };
         let t = Table::new()
-            .with("branch", ColumnData::Str(rows.iter().map(|(b, _)| b.to_string()).collect()))
+            .with("leg", ColumnData::Str(rows.iter().map(|r| r.0.to_string()).collect()))
+            .with("leg_id", ColumnData::I64(rows.iter().map(|r| leg_id(r.0)).collect()))
+            .with("state", ColumnData::Str(rows.iter().map(|r| r.1.to_string()).collect()))
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             .with_f64("p_max_over_E", col(&|s| s.contact.pressure.iter().copied().fold(0.0, f64::max) / sh.E))
             .with_f64("A_bar", col(&|s| 2.0 * s.contact.area / (std::f64::consts::PI * sh.R * sh.R)))
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))
             .with_f64("max_penetration_over_h", col(&|s| s.contact.max_penetration / sh.h))
-            .with("stable", ColumnData::Bool(rows.iter().map(|(_, s)| s.stable).collect()))
-            .with("converged", ColumnData::Bool(rows.iter().map(|(_, s)| s.converged).collect()))
-            .with("iterations", ColumnData::I64(rows.iter().map(|(_, s)| s.iterations as i64).collect()))
+            .with("stable", ColumnData::Bool(rows.iter().map(|r| r.2.stable).collect()))
+            .with("converged", ColumnData::Bool(rows.iter().map(|r| r.2.converged).collect()))
+            .with("iterations", ColumnData::I64(rows.iter().map(|r| r.2.iterations as i64).collect()))
             .with_f64("residual", col(&|s| s.residual))
-            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); rows.len()]);
+            // The cycle's summary, repeated on every row (0 where there is no such event).
+            .with("buckled", ColumnData::Bool(vec![c.buckling.is_some(); n]))
+            .with_f64("F_buckling_bar", vec![finite(c.buckling.map_or(0.0, |b| b.force_before * f_bar)); n])
+            .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
+            .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
+            .with_f64("W_bar", vec![finite(c.dissipated() / (sh.E * sh.h.powi(3))); n])
+            .with("complete", ColumnData::Bool(vec![c.complete; n]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }
 }
 
+/// One state to draw (thesis Fig. 3.3: I Hertzian, II intermediate, III post-buckling).
+#[derive(Serialize, Deserialize, JsonSchema, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct ProfilePoint {
+    /// Legend label of the state.
+    pub label: String,
+    /// Plate displacement delta/R on the loading leg (the nearest computed state is drawn).
+    pub delta: f64,
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileParams {
+    /// The cycle, as the parameters of `fem.indent` (only its loading leg is computed, to
+    /// the largest `points` delta if that is smaller than delta_max).
+    pub cycle: IndentParams,
+    /// The states to draw.
+    pub points: Vec<ProfilePoint>,
+}
+
+/// Deformed meridian and contact pressure of chosen states of the loading leg.
+pub struct FemProfile;
+
+impl Kind for FemProfile {
+    const NAME: &'static str = "fem.profile";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
+    type Params = ProfileParams;
+
+    fn validate(p: &ProfileParams) -> Vec<FieldError> {
+        let mut cycle = Vec::new();
+        p.cycle.validate(&mut cycle);
+        let mut e = prefixed("cycle", cycle);
+        if p.points.is_empty() {
+            e.push(FieldError::new("points", "at least one state to draw".to_string()));
+        }
+        for (i, q) in p.points.iter().enumerate() {
+            if !(q.delta >= 0.0 && q.delta <= p.cycle.delta_max) {
+                e.push(FieldError::new(
+                    &format!("points[{i}].delta"),
+                    format!("must lie in [0, delta_max = {}], got {}", p.cycle.delta_max, q.delta),
+                ));
+            }
+        }
+        e
+    }
+
+    fn run(p: &ProfileParams, _: &Inputs) -> Result<Output> {
+        let (model, plate) = p.cycle.model();
+        let top = p.points.iter().map(|q| q.delta).fold(0.0, f64::max);
+        let c = p.cycle.cycle(&model, &plate, top.min(p.cycle.delta_max), false);
+        let sh = &p.cycle.shell;
+        let m = &model.mesh;
+        let mut t = ProfileRows::default();
+        for (k, q) in p.points.iter().enumerate() {
+            let Some(state) =
+                c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
+                    (a.step.delta / sh.R - q.delta).abs().total_cmp(&(b.step.delta / sh.R - q.delta).abs())
+                })
+            else {
+                continue;
+            };
+            let s = &state.step;
+            let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
+            for (surface, nodes) in [(0, &m.outer), (1, &inner)] {
+                for (i, &a) in nodes.iter().enumerate() {
+                    t.label.push(q.label.clone());
+                    t.point.push(k as i64);
+                    t.surface.push(surface);
+                    t.delta.push(s.delta / sh.R);
+                    t.r.push(finite((m.nodes[a][0] + s.u[2 * a]) / sh.R));
+                    t.z.push(finite((m.nodes[a][1] + s.u[2 * a + 1]) / sh.R));
+                    let p_a = if surface == 0 { s.contact.pressure[i] } else { 0.0 };
+                    t.pressure.push(finite(p_a / sh.E));
+                    t.contact.push(surface == 0 && s.contact.active[i]);
+                    t.inverted.push(state.inverted);
+                }
+            }
+        }
+        Ok(Table::new()
+            .with("label", ColumnData::Str(t.label))
+            .with("point", ColumnData::I64(t.point))
+            .with("surface_id", ColumnData::I64(t.surface))
+            .with_f64("delta_over_R", t.delta)
+            .with_f64("r_over_R", t.r)
+            .with_f64("z_over_R", t.z)
+            .with_f64("p_over_E", t.pressure)
+            .with_f64("contact", t.contact.iter().map(|&c| if c { 1.0 } else { 0.0 }).collect())
+            .with("inverted", ColumnData::Bool(t.inverted))
+            .into())
+    }
+}
+
+/// Errors of a nested parameter block, with their paths below `prefix`.
+fn prefixed(prefix: &str, errors: Vec<FieldError>) -> Vec<FieldError> {
+    errors.into_iter().map(|f| FieldError::new(&format!("{prefix}.{}", f.path), f.message)).collect()
+}
+
+#[derive(Default)]
+struct ProfileRows {
+    label: Vec<String>,
+    point: Vec<i64>,
+    surface: Vec<i64>,
+    delta: Vec<f64>,
+    r: Vec<f64>,
+    z: Vec<f64>,
+    pressure: Vec<f64>,
+    contact: Vec<bool>,
+    inverted: Vec<bool>,
+}
+
+/// The inner-surface node on the same radial line as the outer node `a` (same meridian
+/// angle in the reference configuration).
+fn inner_of(m: &ShellMesh, a: usize) -> usize {
+    let angle = |x: [f64; 2]| x[0].atan2(x[1]);
+    let target = angle(m.nodes[a]);
+    (0..m.n_nodes())
+        .filter(|&b| ((m.nodes[b][0].hypot(m.nodes[b][1])) - m.radius).abs() < 1e-9 * m.radius)
+        .min_by(|&x, &y| (angle(m.nodes[x]) - target).abs().total_cmp(&(angle(m.nodes[y]) - target).abs()))
+        .unwrap_or(a)
+}
+
 pub fn register(r: &mut Registry) {
-    r.add::<FemMesh>().add::<FemIndent>();
+    r.add::<FemMesh>().add::<FemIndent>().add::<FemProfile>();
 }

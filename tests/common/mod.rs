@@ -2,7 +2,7 @@
 //! runs of the `repro` binary whose JSON run report the tests read.
 #![allow(dead_code)]
 
-use polars::prelude::DataFrame;
+use polars::prelude::{DataFrame, DataType};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
@@ -11,9 +11,10 @@ pub struct Scratch {
     pub dir: PathBuf,
 }
 
-/// A numeric column of a published table.
+/// A numeric column (integers cast to f64) of a published table.
 pub fn column(df: &DataFrame, name: &str) -> Vec<f64> {
-    df.column(name).unwrap().f64().unwrap().into_no_null_iter().collect()
+    let c = df.column(name).unwrap().cast(&DataType::Float64).unwrap();
+    c.f64().unwrap().into_no_null_iter().collect()
 }
 
 impl Scratch {
