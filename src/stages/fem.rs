@@ -307,6 +307,7 @@ impl Kind for FemProfile {
         let sh = &p.cycle.shell;
         let m = &model.mesh;
         let mut t = ProfileRows::default();
+        let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
         for (k, q) in p.points.iter().enumerate() {
             let Some(state) =
                 c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
@@ -316,7 +317,6 @@ impl Kind for FemProfile {
                 continue;
             };
             let s = &state.step;
-            let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
             for (surface, nodes) in [(0, &m.outer), (1, &inner)] {
                 for (i, &a) in nodes.iter().enumerate() {
                     t.label.push(q.label.clone());
