@@ -51,13 +51,11 @@ fn dot(a_u: &[f64], a_d: f64, b_u: &[f64], b_d: f64) -> f64 {
 /// tangent) or, without one, so that delta moves with the sign of `sign`.
 fn tangent(
     model: &Model,
-    plate: &Plate,
     tangent: &[(usize, usize, f64)],
-    state: &super::contact::ContactState,
+    q: &[f64],
     orient: Option<(&[f64], f64)>,
     sign: f64,
 ) -> Option<(Vec<f64>, f64)> {
-    let q = plate.delta_derivative(&model.mesh, state);
     let minus_q: Vec<f64> = q.iter().map(|v| -v).collect();
     let b = model.solve(tangent, &minus_q).ok()?;
     let norm = dot(&b, 1.0, &b, 1.0).sqrt();
@@ -94,7 +92,7 @@ fn correct(
     let mut delta = from.delta + ds * t.1;
     let mut iterations = 0;
     loop {
-        let ev = evaluate(model, plate, delta, &u)?;
+        let ev = evaluate(model, plate, delta, &u, &from.contact.stick)?;
         let du_k: Vec<f64> = u.iter().zip(&from.u).map(|(a, b)| a - b).collect();
         let g = dot(t.0, t.1, &du_k, delta - from.delta) - ds;
         // The constraint is linear: after one Newton update it holds to rounding.
@@ -115,9 +113,8 @@ fn correct(
             return None;
         }
         iterations += 1;
-        let q = plate.delta_derivative(&model.mesh, &ev.contact);
         let minus_r: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
-        let minus_q: Vec<f64> = q.iter().map(|v| -v).collect();
+        let minus_q: Vec<f64> = ev.q.iter().map(|v| -v).collect();
         let sol = model.solve_many(&ev.tangent, &[&minus_r, &minus_q]).ok()?;
         let (a, b) = (&sol[0], &sol[1]);
         let dd = -(g + dot(t.0, 0.0, a, 0.0)) / (t.1 + dot(t.0, 0.0, b, 0.0));
@@ -142,8 +139,10 @@ pub fn continue_path(
     opt: ArcOptions,
     mut stop: impl FnMut(&ArcPoint) -> bool,
 ) -> (Vec<ArcPoint>, bool) {
-    let Some(ev) = evaluate(model, plate, start.delta, &start.u) else { return (Vec::new(), false) };
-    let Some(mut t) = tangent(model, plate, &ev.tangent, &ev.contact, None, sign) else {
+    let Some(ev) = evaluate(model, plate, start.delta, &start.u, &start.contact.stick) else {
+        return (Vec::new(), false);
+    };
+    let Some(mut t) = tangent(model, &ev.tangent, &ev.q, None, sign) else {
         return (Vec::new(), false);
     };
     let mut out = Vec::new();
@@ -152,7 +151,7 @@ pub fn continue_path(
     while out.len() < opt.max_points {
         match correct(model, plate, e, &current, (&t.0, t.1), ds, opt.newton) {
             Some((next, ev)) => {
-                let Some(t_next) = tangent(model, plate, &ev.tangent, &ev.contact, Some((&t.0, t.1)), sign) else {
+                let Some(t_next) = tangent(model, &ev.tangent, &ev.q, Some((&t.0, t.1)), sign) else {
                     return (out, false);
                 };
                 let ratio = opt.target_iterations as f64 / next.iterations.max(1) as f64;
@@ -192,7 +191,7 @@ mod tests {
         let flat = load_path(&model, &plate, e, 0.25 * r, 10, 4).pop().unwrap();
         let a = 0.8 * flat.contact.radius;
         let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
-        let inv = solve_at(&model, &plate, e, flat.delta, &start, Options { max_iterations: 60, ..Options::default() });
+        let inv = solve_at(&model, &plate, e, flat.delta, &start, &flat.contact.stick, Options { max_iterations: 60, ..Options::default() });
         assert!(inv.converged && inv.stable);
         let opt = ArcOptions {
             ds: 0.02,

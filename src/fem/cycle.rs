@@ -12,8 +12,8 @@
 
 use super::arclength::{continue_path, ArcOptions};
 use super::contact::Plate;
-use super::indent::{apex_z, dimple, solve_at, Options, Step};
-use super::stability::unilaterally_stable;
+use super::indent::{apex_z, dimple, solve_at, solve_from, Options, Step};
+use super::stability::{unilaterally_stable, AdhesiveHold};
 use super::system::Model;
 
 /// Settings of the cycle (lengths in the mesh's units).
@@ -29,10 +29,15 @@ pub struct CycleOptions {
     pub bisections: u32,
     /// Pressure threshold of the stability test (`stability::LIFT_THRESHOLD`).
     pub lift_threshold: f64,
+    /// What holds touching points of an adhesive contact in the stability test.
+    pub hold: AdhesiveHold,
     /// Also trace the unstable branch past the inverted branch's limit point (arc length).
     pub trace_unstable: bool,
     /// Run the unloading leg (false: loading only).
     pub unload: bool,
+    /// End the loading leg at the snap-through (the question "does it buckle, and at what
+    /// force" is then answered; implies no unloading).
+    pub stop_at_buckling: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +61,8 @@ pub struct Jump {
     pub delta: f64,
     pub force_before: f64,
     pub force_after: f64,
+    /// Outermost contact radius (current) of the state before the jump.
+    pub radius_before: f64,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -94,8 +101,36 @@ fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<Step> {
     let r_mid = model.mesh.radius + 0.5 * model.mesh.thickness;
     let a = 0.8 * s.contact.radius;
     let start = dimple(model, &s.u, a, a * a / r_mid);
-    let inv = solve_at(model, plate, e, s.delta, &start, Options { max_iterations: 60, ..Options::default() });
+    let inv = solve_at(model, plate, e, s.delta, &start, &s.contact.stick, Options { max_iterations: 60, ..Options::default() });
     (inv.converged && is_inverted(model, &inv)).then_some(inv)
+}
+
+/// The adhering state at delta = 0: pressed in to delta = d (doubling from `step` until
+/// Newton converges from the reference), then withdrawn to delta = 0 in quarter steps.
+fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
+    let zero = vec![0.0; model.n_dofs()];
+    let opt = Options { max_iterations: 60, ..Options::default() };
+    let mut d = step;
+    let mut s = loop {
+        let s = solve_at(model, plate, e, d, &zero, &[], opt);
+        if s.converged {
+            break s;
+        }
+        d *= 2.0;
+        if d > 16.0 * step {
+            return None;
+        }
+    };
+    let n = (4.0 * d / step).ceil() as usize;
+    for i in (0..n).rev() {
+        let next = solve_from(model, plate, e, d * i as f64 / n as f64, &s, opt);
+        if !next.converged {
+            return None;
+        }
+        s = next;
+    }
+    s.iterations = 0;
+    Some(s)
 }
 
 fn work(points: &[CyclePoint]) -> f64 {
@@ -108,7 +143,7 @@ fn work(points: &[CyclePoint]) -> f64 {
 /// Runs the cycle from the reference state.
 pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> Cycle {
     let base = opt.delta_max / opt.steps as f64;
-    let stable = |s: &Step| unilaterally_stable(model, plate, &s.u, &s.contact, opt.lift_threshold, &[]);
+    let stable = |s: &Step| unilaterally_stable(model, plate, s, opt.lift_threshold, opt.hold);
     let mut cycle = Cycle { complete: true, ..Default::default() };
     let zero = Step {
         delta: 0.0,
@@ -119,6 +154,10 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         converged: true,
         stable: true,
     };
+    // With adhesion the reference state is not in equilibrium at delta = 0: the apex jumps
+    // into contact (as the plate approaches, before delta = 0). The loading starts from that
+    // adhering state.
+    let zero = if plate.adhesion.is_some() { jump_in(model, plate, e, base).unwrap_or(zero) } else { zero };
     let mut loading = vec![CyclePoint { step: zero.clone(), leg: Leg::Loading, inverted: false }];
     // Loading.
     let mut cur = zero.clone();
@@ -127,7 +166,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     let mut cuts = 0;
     while cur.delta < opt.delta_max * (1.0 - 1e-12) {
         let target = (cur.delta + dd).min(opt.delta_max);
-        let mut s = solve_at(model, plate, e, target, &cur.u, Options::default());
+        let mut s = solve_from(model, plate, e, target, &cur, Options::default());
         if !s.converged {
             if cuts < opt.max_cuts {
                 cuts += 1;
@@ -143,7 +182,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             // Bisect for the last stable flattened state, then snap to the inverted branch.
             let (mut lo, mut hi) = (cur.clone(), s.clone());
             for _ in 0..opt.bisections {
-                let mut mid = solve_at(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo.u, Options::default());
+                let mut mid = solve_from(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo, Options::default());
                 if !mid.converged {
                     break;
                 }
@@ -159,10 +198,26 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     loading.push(CyclePoint { step: lo.clone(), leg: Leg::Loading, inverted: false });
                 }
                 inv.stable = stable(&inv);
-                cycle.buckling =
-                    Some(Jump { delta: hi.delta, force_before: lo.contact.force, force_after: inv.contact.force });
+                cycle.buckling = Some(Jump {
+                    delta: hi.delta,
+                    force_before: lo.contact.force,
+                    force_after: inv.contact.force,
+                    radius_before: lo.contact.radius,
+                });
                 inverted = true;
                 s = inv;
+            } else if opt.stop_at_buckling {
+                // Unstable, but Newton found no inverted state to land on: still the answer.
+                if lo.delta > cur.delta {
+                    loading.push(CyclePoint { step: lo.clone(), leg: Leg::Loading, inverted: false });
+                }
+                cycle.buckling = Some(Jump {
+                    delta: hi.delta,
+                    force_before: lo.contact.force,
+                    force_after: f64::NAN,
+                    radius_before: lo.contact.radius,
+                });
+                break;
             }
         }
         if inverted && !is_inverted(model, &s) {
@@ -170,13 +225,16 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         loading.push(CyclePoint { step: s.clone(), leg: Leg::Loading, inverted });
         cur = s;
+        if opt.stop_at_buckling && cycle.buckling.is_some() {
+            break;
+        }
         if cuts > 0 {
             cuts -= 1;
             dd = (2.0 * dd).min(base);
         }
     }
     cycle.work_loading = work(&loading);
-    if !opt.unload {
+    if !opt.unload || opt.stop_at_buckling {
         cycle.points = loading;
         return cycle;
     }
@@ -230,11 +288,16 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             cycle.complete = false;
         }
         // Snap back at the limit point to the flattened branch.
-        let mut back = solve_at(model, plate, e, last.delta, &flattened_near(last.delta), Options::default());
+        let mut back =
+            solve_at(model, plate, e, last.delta, &flattened_near(last.delta), &last.contact.stick, Options::default());
         if back.converged && !is_inverted(model, &back) {
             back.stable = stable(&back);
-            cycle.snap_back =
-                Some(Jump { delta: last.delta, force_before: last.contact.force, force_after: back.contact.force });
+            cycle.snap_back = Some(Jump {
+                delta: last.delta,
+                force_before: last.contact.force,
+                force_after: back.contact.force,
+                radius_before: last.contact.radius,
+            });
             unloading.push(CyclePoint { step: back.clone(), leg: Leg::Unloading, inverted: false });
             inverted = false;
             cur = back;
@@ -257,9 +320,15 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         if !cycle.complete || inverted {
             break;
         }
-        let mut s = solve_at(model, plate, e, warm.delta, &warm.u, Options::default());
+        // Frictionless, the loading state is the answer (Newton confirms it); with friction the
+        // state depends on the path: Euler predictor from the last unloading state.
+        let mut s = if plate.friction.is_none() {
+            solve_at(model, plate, e, warm.delta, &warm.u, &cur.contact.stick, Options::default())
+        } else {
+            solve_from(model, plate, e, warm.delta, &cur, Options::default())
+        };
         if !s.converged {
-            s = solve_at(model, plate, e, warm.delta, &cur.u, Options { max_iterations: 60, ..Options::default() });
+            s = solve_from(model, plate, e, warm.delta, &cur, Options { max_iterations: 60, ..Options::default() });
         }
         if !s.converged {
             unloading.push(CyclePoint { step: s, leg: Leg::Unloading, inverted });
@@ -299,8 +368,10 @@ mod tests {
             max_cuts: 6,
             bisections: 6,
             lift_threshold: crate::fem::stability::LIFT_THRESHOLD,
+            hold: AdhesiveHold::Free,
             trace_unstable: true,
             unload: true,
+            stop_at_buckling: false,
         }
     }
 

@@ -49,25 +49,33 @@ pub(crate) struct Evaluation {
     pub contact: ContactState,
     /// Max-norm of the residual.
     pub norm: f64,
+    /// d residual / d delta at fixed u (the arc length's border).
+    pub q: Vec<f64>,
 }
 
 /// Residual f_int - f_contact on the free dofs (zero on the fixed ones), its tangent and the
-/// contact state, for displacements `u` and the plate at `delta`; None if an element is
-/// inverted.
-pub(crate) fn evaluate(model: &Model, plate: &Plate, delta: f64, u: &[f64]) -> Option<Evaluation> {
+/// contact state, for displacements `u`, the plate at `delta` and the friction anchors
+/// `stick` of the last converged state; None if an element is inverted.
+pub(crate) fn evaluate(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]) -> Option<Evaluation> {
     let (fint, mut trip) = model.assemble(u)?;
     let mut fext = vec![0.0; model.n_dofs()];
-    let state = plate.apply(&model.mesh, u, apex_z(model) - delta, &mut fext, &mut trip);
+    let mut q = vec![0.0; model.n_dofs()];
+    let state = plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q);
     let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
     let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    Some(Evaluation { residual: r, tangent: trip, contact: state, norm })
+    q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| if f { *v = 0.0 });
+    if !norm.is_finite() {
+        return None;
+    }
+    Some(Evaluation { residual: r, tangent: trip, contact: state, norm, q })
 }
 
-/// Newton at plate displacement `delta` from displacements `u0`.
-pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], opt: Options) -> Step {
+/// Newton at plate displacement `delta` from displacements `u0`, with the friction anchors
+/// `stick` of the last converged state (`ContactState::stick`; empty: the reference state).
+pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], stick: &[f64], opt: Options) -> Step {
     let scale = e * model.mesh.thickness.powi(2);
     let mut u = u0.to_vec();
-    let residual_of = |u: &[f64]| evaluate(model, plate, delta, u);
+    let residual_of = |u: &[f64]| evaluate(model, plate, delta, u, stick);
     let Some(mut cur) = residual_of(&u) else {
         return Step {
             delta,
@@ -108,22 +116,42 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], op
     Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable }
 }
 
+/// Newton at plate displacement `delta` from the converged state `from`, started from the
+/// Euler predictor u + (du/d delta) (delta - from.delta), du/d delta = -K^-1 q at `from`:
+/// touching points then move with the plate instead of leaving it (which, across the kink
+/// of the adhesive law, costs Newton dozens of damped iterations).
+pub fn solve_from(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step, opt: Options) -> Step {
+    let predicted = evaluate(model, plate, from.delta, &from.u, &from.contact.stick).and_then(|ev| {
+        let minus_q: Vec<f64> = ev.q.iter().map(|v| -v).collect();
+        let b = model.solve(&ev.tangent, &minus_q).ok()?;
+        let u: Vec<f64> = from.u.iter().zip(&b).map(|(x, y)| x + y * (delta - from.delta)).collect();
+        u.iter().all(|v| v.is_finite()).then_some(u)
+    });
+    let s = solve_at(model, plate, e, delta, predicted.as_deref().unwrap_or(&from.u), &from.contact.stick, opt);
+    if s.converged || predicted.is_none() {
+        return s;
+    }
+    solve_at(model, plate, e, delta, &from.u, &from.contact.stick, opt)
+}
+
 /// Loads from delta = 0 to `delta_max` in `steps` equal steps (halved on failure, at most
 /// `max_cuts` times per step). Returns the converged states; the last entry is the failed
 /// one if the path stopped early.
 pub fn load_path(model: &Model, plate: &Plate, e: f64, delta_max: f64, steps: usize, max_cuts: u32) -> Vec<Step> {
     let mut out: Vec<Step> = Vec::new();
     let mut u = vec![0.0; model.n_dofs()];
+    let mut stick = Vec::new();
     let mut delta = 0.0;
     let base = delta_max / steps as f64;
     let mut dd = base;
     let mut cuts = 0;
     while delta < delta_max * (1.0 - 1e-12) {
         let target = (delta + dd).min(delta_max);
-        let s = solve_at(model, plate, e, target, &u, Options::default());
+        let s = solve_at(model, plate, e, target, &u, &stick, Options::default());
         if s.converged {
             delta = target;
             u = s.u.clone();
+            stick = s.contact.stick.clone();
             out.push(s);
             if cuts > 0 {
                 cuts -= 1;
@@ -202,7 +230,7 @@ mod tests {
         let a = 0.8 * flat.contact.radius;
         let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
         let inverted =
-            solve_at(&model, &plate, e, flat.delta, &start, Options { max_iterations: 60, ..Options::default() });
+            solve_at(&model, &plate, e, flat.delta, &start, &flat.contact.stick, Options { max_iterations: 60, ..Options::default() });
         assert!(inverted.converged && inverted.stable);
         let fbar = |f: f64| f * r / (e * h.powi(3));
         assert!((fbar(flat.contact.force) - 13.16).abs() < 0.05, "{}", fbar(flat.contact.force));

@@ -141,6 +141,19 @@ pub struct IndentParams {
     /// Bisections locating the snap-through in delta (default 6: to steps/64).
     #[serde(default = "default_bisections")]
     pub bisections: u32,
+    /// Work of adhesion dgamma of the Lennard-Jones law, Eq. 3.3 (N/mm; default 0).
+    #[serde(default)]
+    pub gamma: f64,
+    /// Equilibrium distance g0 of the Lennard-Jones law (mm; default 0.1 as the thesis).
+    #[serde(default = "default_g0")]
+    pub g0: f64,
+    /// Coulomb friction coefficient (default 0).
+    #[serde(default)]
+    pub mu: f64,
+}
+
+fn default_g0() -> f64 {
+    0.1
 }
 
 #[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default)]
@@ -160,6 +173,9 @@ impl IndentParams {
         check::in_open(e, "delta_max", self.delta_max, 0.0, 1.0, "delta/R");
         check::at_least(e, "steps", self.steps, 1);
         check::in_open(e, "lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
+        check::non_negative(e, "gamma", self.gamma);
+        check::positive(e, "g0", self.g0);
+        check::non_negative(e, "mu", self.mu);
     }
 
     fn model(&self) -> (Model, Plate) {
@@ -169,7 +185,7 @@ impl IndentParams {
         };
         let sh = &self.shell;
         let model = Model::new(sh.mesh(), sh.E, sh.nu, base);
-        let plate = Plate::new(&model.mesh, sh.E, self.penalty);
+        let plate = Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
     }
 
@@ -180,8 +196,10 @@ impl IndentParams {
             max_cuts: 8,
             bisections: self.bisections,
             lift_threshold: self.lift_threshold,
+            hold: Default::default(),
             trace_unstable: unload,
             unload,
+            stop_at_buckling: false,
         };
         load_unload(model, plate, self.shell.E, opt)
     }
