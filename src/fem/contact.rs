@@ -200,4 +200,95 @@ mod tests {
         let exact = 2.0 * std::f64::consts::PI * 1.1f64.powi(2);
         assert!((total / exact - 1.0).abs() < 1e-6, "{total} vs {exact}");
     }
+
+    /// The shell pressed flat against the plate by `d` at every outer node within r < 0.3,
+    /// with the radial displacements `ur` (per outer node).
+    fn pressed(mesh: &ShellMesh, d: f64, ur: impl Fn(usize) -> f64) -> (Vec<f64>, f64) {
+        let mut u = vec![0.0; 2 * mesh.n_nodes()];
+        let z_plate = 1.1 - 0.02;
+        for (k, &a) in mesh.outer.iter().enumerate() {
+            if mesh.nodes[a][0] < 0.3 {
+                u[2 * a + 1] = z_plate + d - mesh.nodes[a][1];
+                u[2 * a] = ur(k);
+            }
+        }
+        (u, z_plate)
+    }
+
+    #[test]
+    fn stick_patch_test_uniform_slip_gives_uniform_shear() {
+        // Every contact node displaced by the same s from its anchor: in stick each carries
+        // k_t s per unit area, so the total shear is exactly k_t s times the contact area; past
+        // mu p the same patch slips with exactly mu p per area, and its anchors then sit at
+        // mu p / k_t behind the nodes, so that re-evaluating from them is stick at the limit.
+        let mesh = ShellMesh::hemisphere(1.0, 0.1, 40, 2, 5.0);
+        let plate = Plate::new(&mesh, 1.0, 100.0).with_friction(0.5);
+        let anchors = Plate::initial_stick(&mesh);
+        let d = 1e-3;
+        let p = plate.stiffness * d;
+        let nd = 2 * mesh.n_nodes();
+        for (s_disp, slips) in [(0.2 * 0.5 * d, false), (3.0 * 0.5 * d, true)] {
+            let (u, zp) = pressed(&mesh, d, |_| s_disp);
+            let mut f = vec![0.0; nd];
+            let st = plate.apply(&mesh, &u, zp, &anchors, &mut f, &mut Vec::new(), &mut vec![0.0; nd]);
+            let shear: f64 = mesh.outer.iter().map(|&a| f[2 * a]).sum();
+            let traction = if slips { 0.5 * p } else { plate.friction.unwrap().stiffness * s_disp };
+            assert!(((-shear) / (traction * st.area) - 1.0).abs() < 1e-12, "{shear} vs {}", traction * st.area);
+            for (k, &act) in st.active.iter().enumerate() {
+                if act {
+                    assert_eq!(st.slipping[k], slips);
+                    assert!((st.shear[k] + traction).abs() < 1e-12 * traction);
+                    // With the returned anchors the same state carries the same shear (at the limit).
+                    let mut f2 = vec![0.0; nd];
+                    let st2 = plate.apply(&mesh, &u, zp, &st.stick, &mut f2, &mut Vec::new(), &mut vec![0.0; nd]);
+                    assert!((st2.shear[k] - st.shear[k]).abs() < 1e-9 * traction);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_frictional_tangent_and_delta_derivative_are_consistent() {
+        // Central differences of the interface residual -f_ext against its tangent entries and
+        // q, with nodes in stick and in slip (away from the switch), and with adhesion on.
+        let mesh = ShellMesh::hemisphere(1.0, 0.1, 20, 1, 3.0);
+        let plate = Plate::new(&mesh, 1.0, 100.0).with_friction(0.3).with_adhesion(1e-3, 0.02);
+        let anchors = Plate::initial_stick(&mesh);
+        let d = 1e-3;
+        // Alternate small (stick) and large (slip) radial offsets.
+        let (u, zp) = pressed(&mesh, d, |k| if k % 2 == 0 { 0.05 * 0.3 * d } else { 4.0 * 0.3 * d });
+        let nd = 2 * mesh.n_nodes();
+        let eval = |u: &[f64], zp: f64| {
+            let mut f = vec![0.0; nd];
+            let mut t = Vec::new();
+            let mut q = vec![0.0; nd];
+            let st = plate.apply(&mesh, u, zp, &anchors, &mut f, &mut t, &mut q);
+            let mut k = vec![vec![0.0; nd]; nd];
+            for (i, j, v) in t {
+                k[i][j] += v;
+            }
+            (f.iter().map(|v| -v).collect::<Vec<f64>>(), k, q, st)
+        };
+        let (_, k, q, st) = eval(&u, zp);
+        assert!(st.slipping.iter().any(|&s| s) && st.active.iter().zip(&st.slipping).any(|(&a, &s)| a && !s));
+        let h = 1e-9;
+        let scale = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..nd {
+            let mut up = u.clone();
+            up[i] += h;
+            let mut um = u.clone();
+            um[i] -= h;
+            let (rp, ..) = eval(&up, zp);
+            let (rm, ..) = eval(&um, zp);
+            for j in 0..nd {
+                let fd = (rp[j] - rm[j]) / (2.0 * h);
+                assert!((fd - k[j][i]).abs() < 1e-6 * scale, "K[{j}][{i}] {} vs {fd}", k[j][i]);
+            }
+        }
+        let (rp, ..) = eval(&u, zp - h);
+        let (rm, ..) = eval(&u, zp + h);
+        for j in 0..nd {
+            assert!(((rp[j] - rm[j]) / (2.0 * h) - q[j]).abs() < 1e-6 * scale, "q[{j}]");
+        }
+    }
 }

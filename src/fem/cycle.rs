@@ -446,4 +446,46 @@ mod tests {
         assert!(c.dissipated().abs() < 1e-9 * c.work_loading, "{} of {}", c.dissipated(), c.work_loading);
         assert!(c.points.iter().all(|p| p.step.stable && !p.inverted));
     }
+
+    #[test]
+    fn friction_raises_f_buckling_and_dissipates_without_a_snap() {
+        // Thesis geometry, coarse mesh. Friction resists the sliding of the flattening
+        // contact outward: the snap comes later and at a higher force (measured on the
+        // default mesh, h = 0.9: F R/(E h^3) = 9.22, 10.34, 11.73, 15.6 at mu = 0, 0.25, 0.5,
+        // 1). Without a snap (delta/R = 0.15) the loop no longer closes: the frictional work
+        // is lost, W > 0, the unloading force lies below the loading one.
+        let (model, _) = thesis_shell();
+        let snap = |mu: f64| {
+            let plate = Plate::new(&model.mesh, E, 1000.0).with_friction(mu);
+            let opt = CycleOptions { unload: false, stop_at_buckling: true, trace_unstable: false, ..options(0.3) };
+            load_unload(&model, &plate, E, opt).buckling.expect("snaps")
+        };
+        let (b0, b1) = (snap(0.0), snap(0.5));
+        assert!(fbar(b1.force_before) > 1.1 * fbar(b0.force_before), "{b0:?} {b1:?}");
+        assert!(b1.delta > b0.delta);
+        let plate = Plate::new(&model.mesh, E, 1000.0).with_friction(0.5);
+        let c = load_unload(&model, &plate, E, options(0.15));
+        assert!(c.complete && c.buckling.is_none());
+        assert!(c.dissipated() > 0.01 * c.work_loading, "W = {} of {}", c.dissipated(), c.work_loading);
+        let at = |leg: Leg, d: f64| {
+            c.points.iter().find(|p| p.leg == leg && (p.step.delta / R - d).abs() < 1e-9).unwrap().step.contact.force
+        };
+        assert!(at(Leg::Unloading, 0.1) < at(Leg::Loading, 0.1));
+        assert!(c.points.iter().any(|p| p.step.contact.slipping.iter().any(|&s| s)));
+    }
+
+    #[test]
+    fn with_adhesion_the_cycle_starts_adhering_and_snaps_later() {
+        // gamma = 1e-3 N/mm: at delta = 0 the apex has jumped into contact and pulls on the
+        // plate (negative force); the snap comes later than without adhesion.
+        let (model, plain) = thesis_shell();
+        let plate = Plate::new(&model.mesh, E, 1000.0).with_adhesion(1e-3, 0.1);
+        let opt = CycleOptions { unload: false, stop_at_buckling: true, trace_unstable: false, ..options(0.3) };
+        let c = load_unload(&model, &plate, E, opt);
+        let first = &c.points[0].step;
+        assert!(first.delta == 0.0 && first.contact.force < 0.0 && first.contact.active[0], "{}", first.contact.force);
+        let b = c.buckling.expect("snaps");
+        let b0 = load_unload(&model, &plain, E, opt).buckling.unwrap();
+        assert!(b.delta > b0.delta + 0.005 * R && b.force_before > b0.force_before, "{b:?} {b0:?}");
+    }
 }

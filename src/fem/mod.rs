@@ -4,6 +4,7 @@
 pub mod adhesion;
 pub mod arclength;
 pub mod contact;
+pub mod critical;
 pub mod cycle;
 pub mod element;
 pub mod indent;

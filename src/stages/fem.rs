@@ -150,6 +150,10 @@ pub struct IndentParams {
     /// Coulomb friction coefficient (default 0).
     #[serde(default)]
     pub mu: f64,
+    /// What holds touching points of an adhesive contact in the stability test: `free`
+    /// (default) or `lennard_jones` (16 dgamma / g0^2).
+    #[serde(default)]
+    pub hold: super::fem_map::Hold,
 }
 
 fn default_g0() -> f64 {
@@ -196,7 +200,7 @@ impl IndentParams {
             max_cuts: 8,
             bisections: self.bisections,
             lift_threshold: self.lift_threshold,
-            hold: Default::default(),
+            hold: self.hold.into(),
             trace_unstable: unload,
             unload,
             stop_at_buckling: false,
@@ -212,9 +216,10 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
+    const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
     type Params = IndentParams;
 
     fn validate(p: &IndentParams) -> Vec<FieldError> {
@@ -250,6 +255,11 @@ impl Kind for FemIndent {
             .with("state", ColumnData::Str(rows.iter().map(|r| r.1.to_string()).collect()))
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
+            .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
+            .with_f64("slip_fraction", col(&|s| {
+                let active = s.contact.active.iter().filter(|&&a| a).count();
+                s.contact.slipping.iter().filter(|&&x| x).count() as f64 / active.max(1) as f64
+            }))
             .with_f64("p_max_over_E", col(&|s| s.contact.pressure.iter().copied().fold(0.0, f64::max) / sh.E))
             .with_f64("A_bar", col(&|s| 2.0 * s.contact.area / (std::f64::consts::PI * sh.R * sh.R)))
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))
@@ -295,7 +305,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     type Params = ProfileParams;

@@ -20,6 +20,8 @@ pub enum Style {
     Points,
     /// A line through markers at the data points.
     LinePoints,
+    /// A line with the region between it and the bottom of the axes shaded.
+    Area,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -405,6 +407,9 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                         chart.draw_series(run.iter().map(|&q| Circle::new(q, 3, color.filled()))).map_err(err)?;
                         chart.draw_series(LineSeries::new(run, style)).map_err(err)?
                     }
+                    Style::Area => chart
+                        .draw_series(AreaSeries::new(run, y0, color.mix(0.18).filled()).border_style(style))
+                        .map_err(err)?,
                 };
                 if ri > 0 || s.label.is_empty() {
                     continue;

@@ -3,6 +3,7 @@
 
 pub mod bem;
 pub mod fem;
+pub mod fem_map;
 pub mod figure;
 pub mod fit;
 pub mod material;
@@ -19,6 +20,7 @@ pub fn registry() -> Registry {
     theory::register(&mut r);
     bem::register(&mut r);
     fem::register(&mut r);
+    fem_map::register(&mut r);
     pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);

@@ -1,0 +1,193 @@
+//! The critical adhesion gamma_c above which the shell no longer snaps through on loading
+//! (thesis Section 3.4, Fig. 3.9), and the thickness above which it never does.
+//!
+//! A probe is one loading leg (`cycle::load_unload` with `stop_at_buckling`) at a given work
+//! of adhesion: it answers "unstable before delta_max?", and if so gives F_buckling, delta
+//! and the contact radius r there. gamma_c is bracketed: from a first guess, multiply or
+//! divide by `growth` until the answer changes, then bisect geometrically until
+//! hi / lo - 1 < rel_tol. Every probe is kept (a repeated gamma is not recomputed) and
+//! reported. The analytic estimate of Eq. 3.7, gamma_c = E h (r/R)^4, uses the r of the
+//! last probe that buckled (the instability closest to gamma_c).
+//!
+//! A probe whose loading fails to converge before either answer is counted as buckling
+//! (the snap is where Newton on the flattened branch fails), and reported.
+
+use super::contact::Plate;
+use super::cycle::{load_unload, CycleOptions, Jump};
+use super::system::Model;
+
+/// One loading run at a given adhesion (or thickness).
+#[derive(Clone, Copy, Debug)]
+pub struct Probe {
+    /// The varied parameter (work of adhesion, or h/R).
+    pub x: f64,
+    pub buckling: Option<Jump>,
+    /// The loading leg converged to its answer.
+    pub complete: bool,
+}
+
+impl Probe {
+    pub fn buckles(&self) -> bool {
+        self.buckling.is_some() || !self.complete
+    }
+}
+
+/// A bracket [lo, hi] of a threshold: `lo` on the buckling side, `hi` on the other.
+#[derive(Clone, Debug)]
+pub struct Bracket {
+    pub lo: f64,
+    pub hi: f64,
+    /// The bracket was closed (false: the threshold lies beyond the searched range).
+    pub found: bool,
+    pub probes: Vec<Probe>,
+}
+
+impl Bracket {
+    /// Geometric (lo > 0) or arithmetic midpoint.
+    pub fn mid(&self) -> f64 {
+        if self.lo > 0.0 {
+            (self.lo * self.hi).sqrt()
+        } else {
+            0.5 * (self.lo + self.hi)
+        }
+    }
+
+    /// The last probe on the buckling side with a buckling event (the closest to the
+    /// threshold).
+    pub fn last_buckled(&self) -> Option<&Probe> {
+        self.probes.iter().filter(|p| p.buckling.is_some() && p.x <= self.lo).max_by(|a, b| a.x.total_cmp(&b.x))
+    }
+}
+
+/// Runs `probe(x)` at most once per x.
+struct Memo<F: FnMut(f64) -> Probe> {
+    probe: F,
+    done: Vec<Probe>,
+}
+
+impl<F: FnMut(f64) -> Probe> Memo<F> {
+    fn at(&mut self, x: f64) -> Probe {
+        if let Some(p) = self.done.iter().find(|p| p.x == x) {
+            return *p;
+        }
+        let p = (self.probe)(x);
+        self.done.push(p);
+        p
+    }
+}
+
+/// Brackets the threshold of a parameter x >= 0 below which the shell buckles and above
+/// which it does not: starts at `guess`, steps by the factor `growth` up to `x_max`, and
+/// bisects (geometrically) to `rel_tol`. If x = 0 does not buckle, the bracket is [0, 0].
+pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_max: f64, rel_tol: f64) -> Bracket {
+    assert!(guess > 0.0 && growth > 1.0 && rel_tol > 0.0);
+    let mut m = Memo { probe: &mut probe, done: Vec::new() };
+    if !m.at(0.0).buckles() {
+        return Bracket { lo: 0.0, hi: 0.0, found: true, probes: m.done };
+    }
+    let (mut lo, mut hi) = (0.0, f64::INFINITY);
+    let mut x = guess.min(x_max);
+    loop {
+        if m.at(x).buckles() {
+            lo = x;
+            if x >= x_max {
+                return Bracket { lo, hi: x_max, found: false, probes: m.done };
+            }
+            if hi.is_finite() {
+                break;
+            }
+            x = (x * growth).min(x_max);
+        } else {
+            hi = x;
+            if lo > 0.0 || x < guess / growth.powi(6) {
+                break;
+            }
+            x /= growth;
+        }
+    }
+    while hi / lo.max(f64::MIN_POSITIVE) - 1.0 > rel_tol {
+        let mid = if lo > 0.0 { (lo * hi).sqrt() } else { 0.5 * hi };
+        if m.at(mid).buckles() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if lo == 0.0 && hi < guess * 1e-6 {
+            break;
+        }
+    }
+    Bracket { lo, hi, found: true, probes: m.done }
+}
+
+/// One loading probe of `model` against `plate`, stopping at the snap-through.
+pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) -> Probe {
+    let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
+    Probe { x, buckling: c.buckling, complete: c.complete }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::mesh::ShellMesh;
+    use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
+    use crate::fem::system::Base;
+
+    #[test]
+    fn the_bracket_closes_on_a_known_threshold() {
+        let mut calls = 0;
+        let f = |x: f64| {
+            calls += 1;
+            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4 }), complete: true }
+        };
+        let b = bracket(f, 1e-3, 3.0, 1.0, 0.02);
+        assert!(b.found && b.lo < 0.0123 && b.hi >= 0.0123 && b.hi / b.lo - 1.0 <= 0.02, "{b:?}");
+        assert_eq!(b.probes.len(), calls);
+        // Nothing above x_max: not found; nothing at 0: [0, 0].
+        let b = bracket(|x| Probe { x, buckling: None, complete: false }, 1e-3, 3.0, 1.0, 0.02);
+        assert!(!b.found && b.lo == 1.0);
+        let b = bracket(|x| Probe { x, buckling: None, complete: true }, 1e-3, 3.0, 1.0, 0.02);
+        assert!(b.found && b.hi == 0.0 && b.probes.len() == 1);
+    }
+
+    #[test]
+    fn adhesion_suppresses_the_snap_above_gamma_c_and_not_below() {
+        // R = 15, h = 0.9 (h/R = 0.06, the thesis' Fig. 3.4), mu = 0, coarse mesh: bracket
+        // gamma_c to 10%, then check a cycle on each side of the bracket. Measured: see the
+        // README (gamma_c / (E h) ~ 1.3e-3 with touching points free to lift).
+        let (e, r, h) = (1.3, 15.0, 0.9);
+        let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, 0.45, Base::Clamped);
+        let opt = CycleOptions {
+            delta_max: 0.3 * r,
+            steps: 30,
+            max_cuts: 6,
+            bisections: 4,
+            lift_threshold: LIFT_THRESHOLD,
+            hold: AdhesiveHold::Free,
+            trace_unstable: false,
+            unload: false,
+            stop_at_buckling: true,
+        };
+        let plate = |g: f64| Plate::new(&model.mesh, e, 1000.0).with_adhesion(g, 0.1);
+        let b = bracket(|g| probe(&model, &plate(g), e, g, opt), 1e-3 * e * h, 2.0, 0.1 * e * h, 0.1);
+        assert!(b.found && b.lo > 0.0, "{b:?}");
+        let (lo, hi) = (b.lo / (e * h), b.hi / (e * h));
+        assert!(lo > 5e-3 && hi < 2e-2, "{lo} {hi}");
+        // Both sides again, independently of the bracket's own probes: below, a snap; above,
+        // none up to delta_max.
+        let below = probe(&model, &plate(0.9 * b.lo), e, 0.9 * b.lo, opt);
+        let above = probe(&model, &plate(1.1 * b.hi), e, 1.1 * b.hi, opt);
+        assert!(below.buckling.is_some() && below.complete, "{below:?}");
+        assert!(above.buckling.is_none() && above.complete, "{above:?}");
+        // Adhesion delays the snap monotonically (probes on the buckling side): the delta of
+        // the snap rises with gamma. The net plate force there (contact minus adhesive pull)
+        // rises too while the pull is small (gamma/(E h) <= 2e-3 here; tested below).
+        let mut side: Vec<_> = b.probes.iter().filter_map(|p| p.buckling.map(|j| (p.x, j.delta))).collect();
+        side.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!(side.len() >= 3 && side.windows(2).all(|w| w[1].1 >= w[0].1), "{side:?}");
+        let forces: Vec<f64> = [0.0, 5e-4, 1e-3, 2e-3]
+            .iter()
+            .map(|g| probe(&model, &plate(g * e * h), e, *g, opt).buckling.expect("snaps").force_before)
+            .collect();
+        assert!(forces.windows(2).all(|w| w[1] > w[0]), "{forces:?}");
+    }
+}

@@ -1,0 +1,478 @@
+//! Stage kinds of the buckling map of Chapter 3 (Section 3.4, Figs. 3.6 and 3.9), one
+//! task per point so that every point is cached on its own:
+//! `fem.buckling` (one load-unload cycle at (h/R, gamma/(E h), mu): buckles?, F_buckling,
+//! W), `fem.gamma_c` (the critical adhesion at (h/R, mu) by bracketing), `fem.buckling_limit`
+//! (the thickness above which there is no snap at all, by bisection), and `fem.gamma_c_map`
+//! (the map: gamma_c(h/R) per mu closed at that thickness, with Eq. 3.7).
+
+#![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
+
+use super::{check, finite};
+use crate::fem::contact::Plate;
+use crate::fem::critical::{bracket, probe, Bracket, Probe};
+use crate::fem::cycle::{load_unload, CycleOptions};
+use crate::fem::mesh::ShellMesh;
+use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
+use crate::fem::system::{Base, Model};
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::table::{ColumnData, Table};
+use anyhow::{bail, Result};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// What holds touching points of an adhesive contact in the stability test
+/// (`fem::stability::AdhesiveHold`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Hold {
+    /// Nothing (Eq. 3.3 acts only for g' > 0; the default).
+    #[default]
+    Free,
+    /// The law's lifting stiffness 16 dgamma / g0^2.
+    LennardJones,
+}
+
+impl From<Hold> for AdhesiveHold {
+    fn from(h: Hold) -> AdhesiveHold {
+        match h {
+            Hold::Free => AdhesiveHold::Free,
+            Hold::LennardJones => AdhesiveHold::LennardJones,
+        }
+    }
+}
+
+/// The shell (clamped base), its mesh, the interface and the loading shared by the points
+/// of a map. Every field has a default (the thesis' R = 15 mm, E = 1.3 N/mm^2, nu = 0.45,
+/// g0 = 0.1 mm).
+#[derive(Serialize, Deserialize, JsonSchema, Clone)]
+#[serde(deny_unknown_fields, default)]
+#[allow(non_snake_case)]
+pub struct MapModel {
+    /// Inner radius R (mm).
+    pub R: f64,
+    /// Young's modulus (N/mm^2) and Poisson's ratio.
+    pub E: f64,
+    pub nu: f64,
+    /// Equilibrium distance g0 of the Lennard-Jones law (mm).
+    pub g0: f64,
+    /// Mesh: elements along the meridian and through the thickness, grading.
+    pub n_meridian: usize,
+    pub n_thickness: usize,
+    pub grading: f64,
+    /// Contact penalty in units of E/h.
+    pub penalty: f64,
+    /// Largest plate displacement delta/R, and equal load steps to it.
+    pub delta_max: f64,
+    pub steps: usize,
+    /// Stability test: pressure fraction above which contact nodes are held.
+    pub lift_threshold: f64,
+    /// Bisections locating a snap in delta.
+    pub bisections: u32,
+    /// What holds touching adhesive points in the stability test.
+    pub hold: Hold,
+}
+
+impl Default for MapModel {
+    fn default() -> Self {
+        MapModel {
+            R: 15.0,
+            E: 1.3,
+            nu: 0.45,
+            g0: 0.1,
+            n_meridian: 100,
+            n_thickness: 4,
+            grading: 3.0,
+            penalty: 1000.0,
+            delta_max: 0.35,
+            steps: 35,
+            lift_threshold: LIFT_THRESHOLD,
+            bisections: 5,
+            hold: Hold::Free,
+        }
+    }
+}
+
+impl MapModel {
+    fn validate(&self, e: &mut Vec<FieldError>) {
+        for (name, v) in [("model.R", self.R), ("model.E", self.E), ("model.g0", self.g0)] {
+            check::positive(e, name, v);
+        }
+        check::positive(e, "model.penalty", self.penalty);
+        check::positive(e, "model.grading", self.grading);
+        check::in_open(e, "model.nu", self.nu, -1.0, 0.5, "Poisson's ratio");
+        check::at_least(e, "model.n_meridian", self.n_meridian, 4);
+        check::at_least(e, "model.n_thickness", self.n_thickness, 1);
+        check::at_least(e, "model.steps", self.steps, 1);
+        check::in_open(e, "model.delta_max", self.delta_max, 0.0, 1.0, "delta/R");
+        check::in_open(e, "model.lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
+    }
+
+    fn h(&self, h_over_r: f64) -> f64 {
+        h_over_r * self.R
+    }
+
+    fn shell(&self, h_over_r: f64) -> Model {
+        let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), self.n_meridian, self.n_thickness, self.grading);
+        Model::new(mesh, self.E, self.nu, Base::Clamped)
+    }
+
+    fn plate(&self, model: &Model, h_over_r: f64, gamma_over_eh: f64, mu: f64) -> Plate {
+        Plate::new(&model.mesh, self.E, self.penalty)
+            .with_adhesion(gamma_over_eh * self.E * self.h(h_over_r), self.g0)
+            .with_friction(mu)
+    }
+
+    fn options(&self, unload: bool) -> CycleOptions {
+        CycleOptions {
+            delta_max: self.delta_max * self.R,
+            steps: self.steps,
+            max_cuts: 8,
+            bisections: self.bisections,
+            lift_threshold: self.lift_threshold,
+            hold: self.hold.into(),
+            trace_unstable: false,
+            unload,
+            stop_at_buckling: !unload,
+        }
+    }
+
+    /// F R / (E h^3) per unit force.
+    fn f_bar(&self, h_over_r: f64) -> f64 {
+        self.R / (self.E * self.h(h_over_r).powi(3))
+    }
+}
+
+fn check_h_over_r(e: &mut Vec<FieldError>, name: &str, x: f64) {
+    check::in_open(e, name, x, 0.0, 0.5, "h/R of a thin shell");
+}
+
+fn default_true() -> bool {
+    true
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BucklingParams {
+    /// Thickness over radius h/R (sweepable).
+    pub h_over_R: f64,
+    /// Work of adhesion gamma/(E h) (sweepable; default 0).
+    #[serde(default)]
+    pub gamma_over_Eh: f64,
+    /// Coulomb friction coefficient (sweepable; default 0).
+    #[serde(default)]
+    pub mu: f64,
+    /// Also unload, for the dissipated energy W (default true; false stops at the snap).
+    #[serde(default = "default_true")]
+    pub dissipation: bool,
+    #[serde(default)]
+    pub model: MapModel,
+}
+
+/// One cycle of the map: does the loading snap before delta_max, at what force, and the
+/// energy dissipated over the cycle.
+pub struct FemBuckling;
+
+impl Kind for FemBuckling {
+    const NAME: &'static str = "fem.buckling";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
+    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
+    type Params = BucklingParams;
+
+    fn validate(p: &BucklingParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check_h_over_r(&mut e, "h_over_R", p.h_over_R);
+        check::non_negative(&mut e, "gamma_over_Eh", p.gamma_over_Eh);
+        check::non_negative(&mut e, "mu", p.mu);
+        p.model.validate(&mut e);
+        e
+    }
+
+    fn run(p: &BucklingParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let m = &p.model;
+        let model = m.shell(p.h_over_R);
+        let plate = m.plate(&model, p.h_over_R, p.gamma_over_Eh, p.mu);
+        let c = load_unload(&model, &plate, m.E, m.options(p.dissipation));
+        let fb = m.f_bar(p.h_over_R);
+        let b = c.buckling;
+        let h = m.h(p.h_over_R);
+        let (iterations, residual) = c
+            .points
+            .iter()
+            .fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
+        Ok(Table::new()
+            .with("buckled", ColumnData::Bool(vec![b.is_some()]))
+            .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
+            .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
+            .with_f64("r_over_R", vec![finite(b.map_or(0.0, |j| j.radius_before / m.R))])
+            .with_f64("W_bar", vec![if p.dissipation { finite(c.dissipated() / (m.E * h.powi(3))) } else { 0.0 }])
+            .with_f64("W_Nmm", vec![if p.dissipation { finite(c.dissipated()) } else { 0.0 }])
+            .with("complete", ColumnData::Bool(vec![c.complete]))
+            .with("max_iterations", ColumnData::I64(vec![iterations as i64]))
+            .with_f64("max_residual", vec![finite(residual)])
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
+            .into())
+    }
+}
+
+fn default_guess() -> f64 {
+    3e-3
+}
+fn default_growth() -> f64 {
+    2.0
+}
+fn default_gamma_max() -> f64 {
+    0.1
+}
+fn default_rel_tol() -> f64 {
+    0.1
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GammaCParams {
+    /// Thickness over radius h/R (sweepable).
+    pub h_over_R: f64,
+    /// Coulomb friction coefficient (sweepable; default 0).
+    #[serde(default)]
+    pub mu: f64,
+    /// First gamma/(E h) tried (default 3e-3), factor between trials until the answer
+    /// changes (default 2), largest gamma/(E h) tried (default 0.1).
+    #[serde(default = "default_guess")]
+    pub guess: f64,
+    #[serde(default = "default_growth")]
+    pub growth: f64,
+    #[serde(default = "default_gamma_max")]
+    pub gamma_max: f64,
+    /// Bracketing tolerance: the search stops when gamma_hi / gamma_lo - 1 < rel_tol.
+    #[serde(default = "default_rel_tol")]
+    pub rel_tol: f64,
+    #[serde(default)]
+    pub model: MapModel,
+}
+
+fn probe_rows(b: &Bracket, scale: f64) -> (f64, usize) {
+    let unconverged = b.probes.iter().filter(|p: &&Probe| !p.complete).count();
+    (b.mid() / scale, unconverged)
+}
+
+/// The critical adhesion at one (h/R, mu).
+pub struct FemGammaC;
+
+impl Kind for FemGammaC {
+    const NAME: &'static str = "fem.gamma_c";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
+    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
+    type Params = GammaCParams;
+
+    fn validate(p: &GammaCParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check_h_over_r(&mut e, "h_over_R", p.h_over_R);
+        check::non_negative(&mut e, "mu", p.mu);
+        check::positive(&mut e, "guess", p.guess);
+        check::positive(&mut e, "gamma_max", p.gamma_max);
+        check::in_open(&mut e, "rel_tol", p.rel_tol, 0.0, 10.0, "a relative bracket width");
+        if !(p.growth > 1.0) {
+            e.push(FieldError::new("growth", format!("must exceed 1, got {}", p.growth)));
+        }
+        p.model.validate(&mut e);
+        e
+    }
+
+    fn run(p: &GammaCParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let m = &p.model;
+        let model = m.shell(p.h_over_R);
+        let scale = m.E * m.h(p.h_over_R);
+        let opt = m.options(false);
+        let b = bracket(
+            |g| probe(&model, &m.plate(&model, p.h_over_R, g / scale, p.mu), m.E, g, opt),
+            p.guess * scale,
+            p.growth,
+            p.gamma_max * scale,
+            p.rel_tol,
+        );
+        let (mid, unconverged) = probe_rows(&b, scale);
+        let last = b.last_buckled().and_then(|q| q.buckling);
+        let r = last.map_or(0.0, |j| j.radius_before / m.R);
+        let buckles_at_zero = b.probes.first().is_some_and(|q| q.buckles());
+        Ok(Table::new()
+            .with_f64("gamma_c_over_Eh", vec![finite(mid)])
+            .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
+            .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])
+            .with_f64("rel_tol", vec![p.rel_tol])
+            .with("found", ColumnData::Bool(vec![b.found]))
+            .with("buckles_without_adhesion", ColumnData::Bool(vec![buckles_at_zero]))
+            .with_f64("gamma_c_N_per_mm", vec![finite(mid * scale)])
+            .with_f64("r_over_R", vec![finite(r)])
+            .with_f64("eq3_7_over_Eh", vec![finite(r.powi(4))])
+            .with_f64("F_buckling_bar", vec![finite(last.map_or(0.0, |j| j.force_before * m.f_bar(p.h_over_R)))])
+            .with("probes", ColumnData::I64(vec![b.probes.len() as i64]))
+            .with("unconverged_probes", ColumnData::I64(vec![unconverged as i64]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
+            .into())
+    }
+}
+
+fn default_h_lo() -> f64 {
+    0.1
+}
+fn default_h_hi() -> f64 {
+    0.4
+}
+fn default_h_tol() -> f64 {
+    0.005
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LimitParams {
+    /// Coulomb friction coefficient (sweepable; default 0).
+    #[serde(default)]
+    pub mu: f64,
+    /// Work of adhesion gamma/(E h) (default 0).
+    #[serde(default)]
+    pub gamma_over_Eh: f64,
+    /// The search interval of h/R (default [0.1, 0.4]) and its tolerance (default 0.005).
+    #[serde(default = "default_h_lo")]
+    pub h_lo: f64,
+    #[serde(default = "default_h_hi")]
+    pub h_hi: f64,
+    #[serde(default = "default_h_tol")]
+    pub tol: f64,
+    #[serde(default)]
+    pub model: MapModel,
+}
+
+/// The thickness above which the shell does not snap at all (thesis: h/R = 0.235).
+pub struct FemBucklingLimit;
+
+impl Kind for FemBucklingLimit {
+    const NAME: &'static str = "fem.buckling_limit";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
+    const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
+    type Params = LimitParams;
+
+    fn validate(p: &LimitParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::non_negative(&mut e, "mu", p.mu);
+        check::non_negative(&mut e, "gamma_over_Eh", p.gamma_over_Eh);
+        check_h_over_r(&mut e, "h_lo", p.h_lo);
+        check_h_over_r(&mut e, "h_hi", p.h_hi);
+        if p.h_hi <= p.h_lo {
+            e.push(FieldError::new("h_hi", format!("must exceed h_lo = {}, got {}", p.h_lo, p.h_hi)));
+        }
+        check::positive(&mut e, "tol", p.tol);
+        p.model.validate(&mut e);
+        e
+    }
+
+    fn run(p: &LimitParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let m = &p.model;
+        let opt = m.options(false);
+        let buckles = |h: f64| {
+            let model = m.shell(h);
+            probe(&model, &m.plate(&model, h, p.gamma_over_Eh, p.mu), m.E, h, opt).buckles()
+        };
+        let (mut lo, mut hi) = (p.h_lo, p.h_hi);
+        let mut probes = 2;
+        let (at_lo, at_hi) = (buckles(lo), buckles(hi));
+        let found = at_lo && !at_hi;
+        if found {
+            while hi - lo > p.tol {
+                let mid = 0.5 * (lo + hi);
+                probes += 1;
+                if buckles(mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+        }
+        Ok(Table::new()
+            .with_f64("h_limit_over_R", vec![if found { 0.5 * (lo + hi) } else { 0.0 }])
+            .with_f64("h_lo_over_R", vec![lo])
+            .with_f64("h_hi_over_R", vec![hi])
+            .with("found", ColumnData::Bool(vec![found]))
+            .with("buckles_at_h_lo", ColumnData::Bool(vec![at_lo]))
+            .with("buckles_at_h_hi", ColumnData::Bool(vec![at_hi]))
+            .with("probes", ColumnData::I64(vec![probes]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MapParams {
+    /// The `fem.gamma_c` stage swept over h_over_R and mu.
+    pub gamma_c: String,
+    /// The `fem.buckling_limit` stage swept over mu (optional): each mu's boundary is closed
+    /// at gamma_c = 0 there.
+    #[serde(default)]
+    pub limit: Option<String>,
+}
+
+/// The map of Fig. 3.9: gamma_c/(E h) against h/R for each mu, sorted, closed at the
+/// no-buckling thickness, with the estimate of Eq. 3.7.
+pub struct FemGammaCMap;
+
+impl Kind for FemGammaCMap {
+    const NAME: &'static str = "fem.gamma_c_map";
+    const VERSION: u32 = 1;
+    const DOC: &'static str = "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
+    type Params = MapParams;
+
+    fn referenced_stages(p: &MapParams) -> Vec<(String, String)> {
+        let mut v = vec![("gamma_c".to_string(), p.gamma_c.clone())];
+        if let Some(l) = &p.limit {
+            v.push(("limit".to_string(), l.clone()));
+        }
+        v
+    }
+
+    fn run(p: &MapParams, inputs: &Inputs) -> Result<Output> {
+        let t = inputs.table(&p.gamma_c)?;
+        let col = |name: &str| t.f64_column(name);
+        let (h, mu, g, lo, hi, eq) = (
+            col("h_over_R")?,
+            col("mu")?,
+            col("gamma_c_over_Eh")?,
+            col("gamma_lo_over_Eh")?,
+            col("gamma_hi_over_Eh")?,
+            col("eq3_7_over_Eh")?,
+        );
+        let mut rows: Vec<[f64; 6]> = (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i]]).collect();
+        if let Some(l) = &p.limit {
+            let lt = inputs.table(l)?;
+            let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
+            for i in 0..lmu.len() {
+                if found[i] > 0.5 {
+                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0]);
+                }
+            }
+        }
+        if rows.is_empty() {
+            bail!("stage `{}` has no points", p.gamma_c);
+        }
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+        let c = |k: usize| rows.iter().map(|r| finite(r[k])).collect::<Vec<f64>>();
+        Ok(Table::new()
+            .with_f64("mu", c(0))
+            .with_f64("h_over_R", c(1))
+            .with_f64("gamma_c_over_Eh", c(2))
+            .with_f64("gamma_lo_over_Eh", c(3))
+            .with_f64("gamma_hi_over_Eh", c(4))
+            .with_f64("eq3_7_over_Eh", c(5))
+            .into())
+    }
+}
+
+pub fn register(r: &mut Registry) {
+    r.add::<FemBuckling>().add::<FemGammaC>().add::<FemBucklingLimit>().add::<FemGammaCMap>();
+}
