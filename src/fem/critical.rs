@@ -137,7 +137,7 @@ mod tests {
         let mut calls = 0;
         let f = |x: f64| {
             calls += 1;
-            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4 }), complete: true }
+            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4, pull_before: 0.0 }), complete: true }
         };
         let b = bracket(f, 1e-3, 3.0, 1.0, 0.02);
         assert!(b.found && b.lo < 0.0123 && b.hi >= 0.0123 && b.hi / b.lo - 1.0 <= 0.02, "{b:?}");
@@ -151,9 +151,9 @@ mod tests {
 
     #[test]
     fn adhesion_suppresses_the_snap_above_gamma_c_and_not_below() {
-        // R = 15, h = 0.9 (h/R = 0.06, the thesis' Fig. 3.4), mu = 0, coarse mesh: bracket
-        // gamma_c to 10%, then check a cycle on each side of the bracket. Measured: see the
-        // README (gamma_c / (E h) ~ 1.3e-3 with touching points free to lift).
+        // R = 15, h = 0.9 (h/R = 0.06, the thesis' Fig. 3.4), mu = 0, coarse mesh, delta/R up
+        // to 0.3: bracket gamma_c to 20%, then check a cycle on each side of the bracket.
+        // Measured: gamma_c/(E h) in [0.0095, 0.0104] (bracketed to 10%).
         let (e, r, h) = (1.3, 15.0, 0.9);
         let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, 0.45, Base::Clamped);
         let opt = CycleOptions {
@@ -168,7 +168,7 @@ mod tests {
             stop_at_buckling: true,
         };
         let plate = |g: f64| Plate::new(&model.mesh, e, 1000.0).with_adhesion(g, 0.1);
-        let b = bracket(|g| probe(&model, &plate(g), e, g, opt), 1e-3 * e * h, 2.0, 0.1 * e * h, 0.1);
+        let b = bracket(|g| probe(&model, &plate(g), e, g, opt), 3e-3 * e * h, 2.0, 0.1 * e * h, 0.2);
         assert!(b.found && b.lo > 0.0, "{b:?}");
         let (lo, hi) = (b.lo / (e * h), b.hi / (e * h));
         assert!(lo > 5e-3 && hi < 2e-2, "{lo} {hi}");
@@ -179,15 +179,14 @@ mod tests {
         assert!(below.buckling.is_some() && below.complete, "{below:?}");
         assert!(above.buckling.is_none() && above.complete, "{above:?}");
         // Adhesion delays the snap monotonically (probes on the buckling side): the delta of
-        // the snap rises with gamma. The net plate force there (contact minus adhesive pull)
-        // rises too while the pull is small (gamma/(E h) <= 2e-3 here; tested below).
-        let mut side: Vec<_> = b.probes.iter().filter_map(|p| p.buckling.map(|j| (p.x, j.delta))).collect();
+        // the snap and the contact (compressive) force there rise with gamma. The net plate
+        // force, contact minus adhesive pull, does not: measured on this mesh F R/(E h^3) =
+        // 9.3, 11.3, 11.1, 10.0 at gamma/(E h) = 0, 5e-4, 1e-3, 2e-3 (the pull grows with the
+        // contact's perimeter).
+        let mut side: Vec<_> =
+            b.probes.iter().filter_map(|p| p.buckling.map(|j| (p.x, j.delta, j.force_before - j.pull_before))).collect();
         side.sort_by(|a, b| a.0.total_cmp(&b.0));
-        assert!(side.len() >= 3 && side.windows(2).all(|w| w[1].1 >= w[0].1), "{side:?}");
-        let forces: Vec<f64> = [0.0, 5e-4, 1e-3, 2e-3]
-            .iter()
-            .map(|g| probe(&model, &plate(g * e * h), e, *g, opt).buckling.expect("snaps").force_before)
-            .collect();
-        assert!(forces.windows(2).all(|w| w[1] > w[0]), "{forces:?}");
+        assert!(side.len() >= 3, "{side:?}");
+        assert!(side.windows(2).all(|w| w[1].1 >= w[0].1 && w[1].2 > w[0].2), "{side:?}");
     }
 }

@@ -63,6 +63,8 @@ pub struct Jump {
     pub force_after: f64,
     /// Outermost contact radius (current) of the state before the jump.
     pub radius_before: f64,
+    /// The adhesive part (<= 0) of `force_before`.
+    pub pull_before: f64,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -203,6 +205,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     force_before: lo.contact.force,
                     force_after: inv.contact.force,
                     radius_before: lo.contact.radius,
+                    pull_before: lo.contact.adhesive,
                 });
                 inverted = true;
                 s = inv;
@@ -216,6 +219,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     force_before: lo.contact.force,
                     force_after: f64::NAN,
                     radius_before: lo.contact.radius,
+                    pull_before: lo.contact.adhesive,
                 });
                 break;
             }
@@ -297,6 +301,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                 force_before: last.contact.force,
                 force_after: back.contact.force,
                 radius_before: last.contact.radius,
+                pull_before: last.contact.adhesive,
             });
             unloading.push(CyclePoint { step: back.clone(), leg: Leg::Unloading, inverted: false });
             inverted = false;
