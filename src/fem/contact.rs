@@ -13,7 +13,7 @@
 //! penalty regularised with a return mapping: each outer node carries an anchor xi_a, the
 //! plate point it sticks to (for a node out of contact: its radius at the last converged
 //! state, where it will touch). The trial tangential force t = k_t w_a (r_a - xi_a) (k_t =
-//! k_n) is kept if |t| <= mu p_a w_a (stick), else cut back to mu p_a w_a sign(t) (slip, the
+//! 0.1 k_n) is kept if |t| <= mu p_a w_a (stick), else cut back to mu p_a w_a sign(t) (slip, the
 //! anchor following the node). The anchors are the history of the load path: each converged
 //! state hands its anchors to the next solve (backward Euler). The consistent tangent is
 //! k_t w_a (stick) or the non-symmetric mu k_n w_a sign(t) coupling of the shear to the
@@ -44,6 +44,11 @@ pub struct ContactState {
     pub stick: Vec<f64>,
 }
 
+/// Tangential penalty over the normal one: soft enough that Newton does not cycle between
+/// stick and slip, stiff enough that the elastic slip before sliding, mu p / k_t, stays
+/// below 1e-3 h at p ~ 0.01 E.
+pub const TANGENTIAL_PENALTY: f64 = 0.1;
+
 /// Coulomb friction with the plate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Friction {
@@ -53,6 +58,7 @@ pub struct Friction {
 }
 
 /// Penalty contact with a plate, with adhesion and friction if given.
+#[derive(Clone)]
 pub struct Plate {
     /// Tributary areas of the outer nodes (reference configuration).
     pub weights: Vec<f64>,
@@ -79,11 +85,16 @@ impl Plate {
         self
     }
 
-    /// With Coulomb friction of coefficient `mu` (none if mu = 0), tangential penalty equal
-    /// to the normal one.
+    /// With Coulomb friction of coefficient `mu` (none if mu = 0), tangential penalty
+    /// `TANGENTIAL_PENALTY` times the normal one.
     pub fn with_friction(mut self, mu: f64) -> Plate {
-        self.friction = (mu > 0.0).then_some(Friction { mu, stiffness: self.stiffness });
+        self.friction = (mu > 0.0).then_some(Friction { mu, stiffness: TANGENTIAL_PENALTY * self.stiffness });
         self
+    }
+
+    /// The same plate without friction.
+    pub fn frictionless(&self) -> Plate {
+        Plate { friction: None, ..self.clone() }
     }
 
     /// The anchors of the reference state (the outer nodes' radii).
@@ -227,7 +238,8 @@ mod tests {
         let d = 1e-3;
         let p = plate.stiffness * d;
         let nd = 2 * mesh.n_nodes();
-        for (s_disp, slips) in [(0.2 * 0.5 * d, false), (3.0 * 0.5 * d, true)] {
+        let s_star = 0.5 * d / TANGENTIAL_PENALTY; // mu p / k_t
+        for (s_disp, slips) in [(0.2 * s_star, false), (3.0 * s_star, true)] {
             let (u, zp) = pressed(&mesh, d, |_| s_disp);
             let mut f = vec![0.0; nd];
             let st = plate.apply(&mesh, &u, zp, &anchors, &mut f, &mut Vec::new(), &mut vec![0.0; nd]);
@@ -256,7 +268,8 @@ mod tests {
         let anchors = Plate::initial_stick(&mesh);
         let d = 1e-3;
         // Alternate small (stick) and large (slip) radial offsets.
-        let (u, zp) = pressed(&mesh, d, |k| if k % 2 == 0 { 0.05 * 0.3 * d } else { 4.0 * 0.3 * d });
+        let s_star = 0.3 * d / TANGENTIAL_PENALTY;
+        let (u, zp) = pressed(&mesh, d, |k| if k % 2 == 0 { 0.05 * s_star } else { 4.0 * s_star });
         let nd = 2 * mesh.n_nodes();
         let eval = |u: &[f64], zp: f64| {
             let mut f = vec![0.0; nd];

@@ -99,7 +99,7 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
             x = (x * growth).min(x_max);
         } else {
             hi = x;
-            if lo > 0.0 || x < guess / growth.powi(6) {
+            if lo > 0.0 || x < guess / growth.powi(12) {
                 break;
             }
             x /= growth;
@@ -137,7 +137,7 @@ mod tests {
         let mut calls = 0;
         let f = |x: f64| {
             calls += 1;
-            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4, pull_before: 0.0 }), complete: true }
+            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4, pull_before: 0.0, delta_after: 0.0 }), complete: true }
         };
         let b = bracket(f, 1e-3, 3.0, 1.0, 0.02);
         assert!(b.found && b.lo < 0.0123 && b.hi >= 0.0123 && b.hi / b.lo - 1.0 <= 0.02, "{b:?}");

@@ -65,6 +65,9 @@ pub struct Jump {
     pub radius_before: f64,
     /// The adhesive part (<= 0) of `force_before`.
     pub pull_before: f64,
+    /// Where the state after the jump was found (= delta, unless Newton found no state to
+    /// land on at first; NaN if it never did).
+    pub delta_after: f64,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -97,14 +100,40 @@ fn is_inverted(model: &Model, s: &Step) -> bool {
     z < apex_z(model) - s.delta - 0.5 * model.mesh.thickness
 }
 
-/// Newton from the flattened state `s` pushed in by a central dimple: the inverted state at
-/// the same delta, if Newton finds one.
+/// The friction anchors of a fresh contact at displacements `u` (the outer nodes' current
+/// radii).
+fn fresh_stick(model: &Model, u: &[f64]) -> Vec<f64> {
+    model.mesh.outer.iter().map(|&a| model.mesh.nodes[a][0] + u[2 * a]).collect()
+}
+
+/// Newton for the state a jump lands on, at `delta` from the guess `start`. With friction
+/// the contact is re-established where it lands, without shear: the frictionless state,
+/// whose own positions then become the anchors (so that it is an equilibrium with friction
+/// too, and the shear builds up again from there).
+fn land(model: &Model, plate: &Plate, e: f64, delta: f64, start: &[f64]) -> Step {
+    let opt = Options { max_iterations: 60, ..Options::default() };
+    if plate.friction.is_none() {
+        return solve_at(model, plate, e, delta, start, &[], opt);
+    }
+    let s = solve_at(model, &plate.frictionless(), e, delta, start, &[], opt);
+    if !s.converged {
+        return s;
+    }
+    let stick = fresh_stick(model, &s.u);
+    solve_at(model, plate, e, delta, &s.u, &stick, opt)
+}
+
+/// Newton from the flattened state `s` pushed in by a central dimple (radius 0.8, 0.6 or
+/// 1.0 times the contact radius, the first that works): the inverted state at the same
+/// delta, if Newton finds one.
 fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<Step> {
     let r_mid = model.mesh.radius + 0.5 * model.mesh.thickness;
-    let a = 0.8 * s.contact.radius;
-    let start = dimple(model, &s.u, a, a * a / r_mid);
-    let inv = solve_at(model, plate, e, s.delta, &start, &s.contact.stick, Options { max_iterations: 60, ..Options::default() });
-    (inv.converged && is_inverted(model, &inv)).then_some(inv)
+    [0.8, 0.6, 1.0].iter().find_map(|&f| {
+        let a = f * s.contact.radius;
+        let start = dimple(model, &s.u, a, a * a / r_mid);
+        let inv = land(model, plate, e, s.delta, &start);
+        (inv.converged && is_inverted(model, &inv)).then_some(inv)
+    })
 }
 
 /// The adhering state at delta = 0: pressed in to delta = d (doubling from `step` until
@@ -181,36 +210,21 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         s.stable = stable(&s);
         if !inverted && !s.stable {
-            // Bisect for the last stable flattened state, then snap to the inverted branch.
-            let (mut lo, mut hi) = (cur.clone(), s.clone());
-            for _ in 0..opt.bisections {
-                let mut mid = solve_from(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo, Options::default());
-                if !mid.converged {
-                    break;
+            let from = if cycle.buckling.is_none() {
+                // Bisect for the last stable flattened state: F_buckling.
+                let (mut lo, mut hi) = (cur.clone(), s.clone());
+                for _ in 0..opt.bisections {
+                    let mut mid = solve_from(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo, Options::default());
+                    if !mid.converged {
+                        break;
+                    }
+                    mid.stable = stable(&mid);
+                    if mid.stable {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
                 }
-                mid.stable = stable(&mid);
-                if mid.stable {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            if let Some(mut inv) = invert(model, plate, e, &hi) {
-                if lo.delta > cur.delta {
-                    loading.push(CyclePoint { step: lo.clone(), leg: Leg::Loading, inverted: false });
-                }
-                inv.stable = stable(&inv);
-                cycle.buckling = Some(Jump {
-                    delta: hi.delta,
-                    force_before: lo.contact.force,
-                    force_after: inv.contact.force,
-                    radius_before: lo.contact.radius,
-                    pull_before: lo.contact.adhesive,
-                });
-                inverted = true;
-                s = inv;
-            } else if opt.stop_at_buckling {
-                // Unstable, but Newton found no inverted state to land on: still the answer.
                 if lo.delta > cur.delta {
                     loading.push(CyclePoint { step: lo.clone(), leg: Leg::Loading, inverted: false });
                 }
@@ -220,8 +234,27 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     force_after: f64::NAN,
                     radius_before: lo.contact.radius,
                     pull_before: lo.contact.adhesive,
+                    delta_after: f64::NAN,
                 });
-                break;
+                if opt.stop_at_buckling {
+                    // The question is answered.
+                    break;
+                }
+                hi
+            } else {
+                // Unstable, and no inverted state was found at the last attempt: try again.
+                s.clone()
+            };
+            // Snap to the inverted branch (where Newton finds it; else carry on along the
+            // unstable flattened branch and try at the next step).
+            if let Some(mut inv) = invert(model, plate, e, &from) {
+                inv.stable = stable(&inv);
+                if let Some(b) = cycle.buckling.as_mut() {
+                    b.force_after = inv.contact.force;
+                    b.delta_after = inv.delta;
+                }
+                inverted = true;
+                s = inv;
             }
         }
         if inverted && !is_inverted(model, &s) {
@@ -229,9 +262,6 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         loading.push(CyclePoint { step: s.clone(), leg: Leg::Loading, inverted });
         cur = s;
-        if opt.stop_at_buckling && cycle.buckling.is_some() {
-            break;
-        }
         if cuts > 0 {
             cuts -= 1;
             dd = (2.0 * dd).min(base);
@@ -292,8 +322,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             cycle.complete = false;
         }
         // Snap back at the limit point to the flattened branch.
-        let mut back =
-            solve_at(model, plate, e, last.delta, &flattened_near(last.delta), &last.contact.stick, Options::default());
+        let mut back = land(model, plate, e, last.delta, &flattened_near(last.delta));
         if back.converged && !is_inverted(model, &back) {
             back.stable = stable(&back);
             cycle.snap_back = Some(Jump {
@@ -302,6 +331,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                 force_after: back.contact.force,
                 radius_before: last.contact.radius,
                 pull_before: last.contact.adhesive,
+                delta_after: last.delta,
             });
             unloading.push(CyclePoint { step: back.clone(), leg: Leg::Unloading, inverted: false });
             inverted = false;

@@ -92,20 +92,34 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
         iterations += 1;
         let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
         let Ok(du) = model.solve(&cur.tangent, &rhs) else { break };
-        // Backtracking on the residual norm (and on inverted elements).
+        // Backtracking on the residual norm (and on inverted elements). If no step down to
+        // 1/128 lowers it, the full step is taken: at the kinks of the interface laws
+        // (contact status, stick/slip) a tiny step only sends Newton back where it came from,
+        // a 2-cycle; the full step lets it change the status set.
         let mut step = 1.0;
         let mut accepted = false;
-        for _ in 0..12 {
+        let mut full: Option<(Vec<f64>, Evaluation)> = None;
+        for _ in 0..8 {
             let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + step * b).collect();
             if let Some(next) = residual_of(&trial) {
-                if next.norm < cur.norm || step < 0.01 {
+                if next.norm < cur.norm {
                     u = trial;
                     cur = next;
                     accepted = true;
                     break;
                 }
+                if full.is_none() && step == 1.0 {
+                    full = Some((trial, next));
+                }
             }
             step *= 0.5;
+        }
+        if !accepted {
+            if let Some((trial, next)) = full {
+                u = trial;
+                cur = next;
+                accepted = true;
+            }
         }
         if !accepted {
             break;

@@ -253,6 +253,8 @@ impl Kind for FemIndent {
             .with("leg", ColumnData::Str(rows.iter().map(|r| r.0.to_string()).collect()))
             .with("leg_id", ColumnData::I64(rows.iter().map(|r| leg_id(r.0)).collect()))
             .with("state", ColumnData::Str(rows.iter().map(|r| r.1.to_string()).collect()))
+            .with_f64("gamma", vec![p.gamma; n])
+            .with_f64("mu", vec![p.mu; n])
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
@@ -273,7 +275,7 @@ impl Kind for FemIndent {
             .with_f64("F_buckling_bar", vec![finite(c.buckling.map_or(0.0, |b| b.force_before * f_bar)); n])
             .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
-            .with_f64("W_bar", vec![finite(c.dissipated() / (sh.E * sh.h.powi(3))); n])
+            .with_f64("W_bar", vec![if c.complete { finite(c.dissipated() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n])
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())

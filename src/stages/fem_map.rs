@@ -201,13 +201,18 @@ impl Kind for FemBuckling {
             .points
             .iter()
             .fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
+        // The loop area only for a complete cycle (a partial one has no closed integral).
+        let w = if p.dissipation && c.complete { c.dissipated() } else { 0.0 };
         Ok(Table::new()
+            .with_f64("h_over_R", vec![p.h_over_R])
+            .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
+            .with_f64("mu", vec![p.mu])
             .with("buckled", ColumnData::Bool(vec![b.is_some()]))
             .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
             .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
             .with_f64("r_over_R", vec![finite(b.map_or(0.0, |j| j.radius_before / m.R))])
-            .with_f64("W_bar", vec![if p.dissipation { finite(c.dissipated() / (m.E * h.powi(3))) } else { 0.0 }])
-            .with_f64("W_Nmm", vec![if p.dissipation { finite(c.dissipated()) } else { 0.0 }])
+            .with_f64("W_bar", vec![finite(w / (m.E * h.powi(3)))])
+            .with_f64("W_Nmm", vec![finite(w)])
             .with("complete", ColumnData::Bool(vec![c.complete]))
             .with("max_iterations", ColumnData::I64(vec![iterations as i64]))
             .with_f64("max_residual", vec![finite(residual)])
@@ -300,6 +305,8 @@ impl Kind for FemGammaC {
         let r = last.map_or(0.0, |j| j.radius_before / m.R);
         let buckles_at_zero = b.probes.first().is_some_and(|q| q.buckles());
         Ok(Table::new()
+            .with_f64("h_over_R", vec![p.h_over_R])
+            .with_f64("mu", vec![p.mu])
             .with_f64("gamma_c_over_Eh", vec![finite(mid)])
             .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
             .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])
@@ -395,6 +402,8 @@ impl Kind for FemBucklingLimit {
             }
         }
         Ok(Table::new()
+            .with_f64("mu", vec![p.mu])
+            .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
             .with_f64("h_limit_over_R", vec![if found { 0.5 * (lo + hi) } else { 0.0 }])
             .with_f64("h_lo_over_R", vec![lo])
             .with_f64("h_hi_over_R", vec![hi])
