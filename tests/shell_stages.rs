@@ -75,3 +75,55 @@ fn a_profile_point_outside_the_cycle_names_its_field() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("p.yaml:") && err.contains("points[0].delta") && err.contains("cycle.shell.h"), "{err}");
 }
+
+/// A coarse, short map model: the shell of h/R = 0.06 snaps by delta/R = 0.3 without
+/// adhesion.
+const MAP_MODEL: &str = "{n_meridian: 60, n_thickness: 3, grading: 8, delta_max: 0.3, steps: 30, bisections: 4}";
+
+#[test]
+fn the_buckling_map_stages_reach_their_tables() {
+    // fem.buckling over mu (friction raises F_buckling), fem.gamma_c at one (h/R, mu) with
+    // its bracket, and the map stage that joins them with a buckling limit. Each point is a
+    // task: its parameters are columns of the table.
+    let s = Scratch::new("shell-map");
+    s.run_pipeline(&format!(
+        "stages:
+  - name: b
+    kind: fem.buckling
+    params: {{h_over_R: 0.06, mu: [0, 0.5], dissipation: false, model: {MAP_MODEL}}}
+  - name: gc
+    kind: fem.gamma_c
+    params: {{h_over_R: 0.06, mu: 0, guess: 0.008, rel_tol: 0.3, model: {MAP_MODEL}}}
+  - name: map
+    kind: fem.gamma_c_map
+    needs: [gc]
+    params: {{gamma_c: gc}}
+"
+    ));
+    let b = s.table("b");
+    let (mu, fb, buckled) = (column(&b, "mu"), column(&b, "F_buckling_bar"), column(&b, "buckled"));
+    assert_eq!(mu, vec![0.0, 0.5]);
+    assert!(buckled.iter().all(|&x| x == 1.0) && fb[1] > 1.1 * fb[0], "{fb:?}");
+    let g = s.table("gc");
+    let (lo, hi, mid) = (column(&g, "gamma_lo_over_Eh")[0], column(&g, "gamma_hi_over_Eh")[0], column(&g, "gamma_c_over_Eh")[0]);
+    // The unit test's bracket on this mesh: [0.0095, 0.0104].
+    assert!(lo < mid && mid < hi && hi / lo - 1.0 <= 0.3 && lo > 0.005 && hi < 0.02, "{lo} {mid} {hi}");
+    assert_eq!(column(&g, "found")[0], 1.0);
+    let r = column(&g, "r_over_R")[0];
+    assert!(r > 0.3 && r < 0.9 && (column(&g, "eq3_7_over_Eh")[0] - r.powi(4)).abs() < 1e-12);
+    let m = s.table("map");
+    assert_eq!(column(&m, "gamma_c_over_Eh"), vec![mid]);
+}
+
+#[test]
+fn a_bad_map_model_field_names_its_path() {
+    let s = Scratch::new("shell-map-bad");
+    s.write(
+        "p.yaml",
+        "stages:\n  - name: gc\n    kind: fem.gamma_c\n    params: {h_over_R: 0.7, growth: 1, model: {R: -1}}\n",
+    );
+    let out = s.repro(&["run", "p.yaml", "-q"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("p.yaml:") && err.contains("model.R") && err.contains("h_over_R") && err.contains("growth"), "{err}");
+}

@@ -47,7 +47,9 @@ pub struct DataLayer {
     /// One curve per distinct value of this column.
     #[serde(default)]
     pub group_by: Option<String>,
-    /// Legend label; `{column}` is replaced by that column's value for the curve.
+    /// Legend label; `{column}` is replaced by that column's value for the curve. Empty or
+    /// absent: no legend entry.
+    #[serde(default)]
     pub label: String,
     #[serde(default)]
     pub style: Style,
