@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint
+.PHONY: figures test build schema clean-cache lint bench-gamma-c
 
 build:
 	$(CARGO) build
@@ -22,3 +22,11 @@ lint:
 
 clean-cache:
 	rm -rf cache
+
+# Wall time of the full gamma_c map (Fig. 3.9: fem.gamma_c over h/R x mu and the buckling
+# limits) from an empty cache, release build; see README "Chapter 3: adhesion and friction".
+bench-gamma-c:
+	$(CARGO) build --release
+	rm -rf target/bench-gamma-c
+	/usr/bin/time -f "gamma_c map: %e s wall, %U s user" ./target/release/repro run $(PIPELINE) --target gamma_c_map \
+		--cache target/bench-gamma-c/cache --figures target/bench-gamma-c/figures --tables target/bench-gamma-c/tables -q

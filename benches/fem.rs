@@ -31,8 +31,10 @@ fn main() {
             max_cuts: 8,
             bisections: 6,
             lift_threshold: LIFT_THRESHOLD,
+            hold: Default::default(),
             trace_unstable: true,
             unload: true,
+            stop_at_buckling: false,
         };
         let t0 = Instant::now();
         let c = load_unload(&model, &plate, e, opt);

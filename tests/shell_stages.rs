@@ -105,7 +105,8 @@ fn the_buckling_map_stages_reach_their_tables() {
     assert_eq!(mu, vec![0.0, 0.5]);
     assert!(buckled.iter().all(|&x| x == 1.0) && fb[1] > 1.1 * fb[0], "{fb:?}");
     let g = s.table("gc");
-    let (lo, hi, mid) = (column(&g, "gamma_lo_over_Eh")[0], column(&g, "gamma_hi_over_Eh")[0], column(&g, "gamma_c_over_Eh")[0]);
+    let (lo, hi, mid) =
+        (column(&g, "gamma_lo_over_Eh")[0], column(&g, "gamma_hi_over_Eh")[0], column(&g, "gamma_c_over_Eh")[0]);
     // The unit test's bracket on this mesh: [0.0095, 0.0104].
     assert!(lo < mid && mid < hi && hi / lo - 1.0 <= 0.3 && lo > 0.005 && hi < 0.02, "{lo} {mid} {hi}");
     assert_eq!(column(&g, "found")[0], 1.0);
@@ -125,5 +126,8 @@ fn a_bad_map_model_field_names_its_path() {
     let out = s.repro(&["run", "p.yaml", "-q"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("p.yaml:") && err.contains("model.R") && err.contains("h_over_R") && err.contains("growth"), "{err}");
+    assert!(
+        err.contains("p.yaml:") && err.contains("model.R") && err.contains("h_over_R") && err.contains("growth"),
+        "{err}"
+    );
 }

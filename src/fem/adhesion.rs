@@ -90,6 +90,7 @@ impl Adhesion {
     /// the adhesive part of the plate force (dU/d delta, counted like a pressing force:
     /// negative, a pull) and the energy U. `lifting`: use the lifting-side curvature
     /// where the surface touches (for the stability test; then only the tangent is of use).
+    #[allow(clippy::too_many_arguments)]
     pub fn apply(
         &self,
         mesh: &ShellMesh,

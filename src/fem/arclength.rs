@@ -191,7 +191,15 @@ mod tests {
         let flat = load_path(&model, &plate, e, 0.25 * r, 10, 4).pop().unwrap();
         let a = 0.8 * flat.contact.radius;
         let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
-        let inv = solve_at(&model, &plate, e, flat.delta, &start, &flat.contact.stick, Options { max_iterations: 60, ..Options::default() });
+        let inv = solve_at(
+            &model,
+            &plate,
+            e,
+            flat.delta,
+            &start,
+            &flat.contact.stick,
+            Options { max_iterations: 60, ..Options::default() },
+        );
         assert!(inv.converged && inv.stable);
         let opt = ArcOptions {
             ds: 0.02,

@@ -137,7 +137,18 @@ mod tests {
         let mut calls = 0;
         let f = |x: f64| {
             calls += 1;
-            Probe { x, buckling: (x < 0.0123).then_some(Jump { delta: 0.0, force_before: 1.0, force_after: 0.5, radius_before: 0.4, pull_before: 0.0, delta_after: 0.0 }), complete: true }
+            Probe {
+                x,
+                buckling: (x < 0.0123).then_some(Jump {
+                    delta: 0.0,
+                    force_before: 1.0,
+                    force_after: 0.5,
+                    radius_before: 0.4,
+                    pull_before: 0.0,
+                    delta_after: 0.0,
+                }),
+                complete: true,
+            }
         };
         let b = bracket(f, 1e-3, 3.0, 1.0, 0.02);
         assert!(b.found && b.lo < 0.0123 && b.hi >= 0.0123 && b.hi / b.lo - 1.0 <= 0.02, "{b:?}");
@@ -183,8 +194,11 @@ mod tests {
         // force, contact minus adhesive pull, does not: measured on this mesh F R/(E h^3) =
         // 9.3, 11.3, 11.1, 10.0 at gamma/(E h) = 0, 5e-4, 1e-3, 2e-3 (the pull grows with the
         // contact's perimeter).
-        let mut side: Vec<_> =
-            b.probes.iter().filter_map(|p| p.buckling.map(|j| (p.x, j.delta, j.force_before - j.pull_before))).collect();
+        let mut side: Vec<_> = b
+            .probes
+            .iter()
+            .filter_map(|p| p.buckling.map(|j| (p.x, j.delta, j.force_before - j.pull_before)))
+            .collect();
         side.sort_by(|a, b| a.0.total_cmp(&b.0));
         assert!(side.len() >= 3, "{side:?}");
         assert!(side.windows(2).all(|w| w[1].1 >= w[0].1 && w[1].2 > w[0].2), "{side:?}");

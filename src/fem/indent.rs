@@ -63,7 +63,11 @@ pub(crate) fn evaluate(model: &Model, plate: &Plate, delta: f64, u: &[f64], stic
     let state = plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q);
     let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
     let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| if f { *v = 0.0 });
+    q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| {
+        if f {
+            *v = 0.0
+        }
+    });
     if !norm.is_finite() {
         return None;
     }
@@ -243,8 +247,15 @@ mod tests {
         assert!(flat.converged && flat.stable && (flat.delta / r - 0.25).abs() < 1e-12);
         let a = 0.8 * flat.contact.radius;
         let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
-        let inverted =
-            solve_at(&model, &plate, e, flat.delta, &start, &flat.contact.stick, Options { max_iterations: 60, ..Options::default() });
+        let inverted = solve_at(
+            &model,
+            &plate,
+            e,
+            flat.delta,
+            &start,
+            &flat.contact.stick,
+            Options { max_iterations: 60, ..Options::default() },
+        );
         assert!(inverted.converged && inverted.stable);
         let fbar = |f: f64| f * r / (e * h.powi(3));
         assert!((fbar(flat.contact.force) - 13.16).abs() < 0.05, "{}", fbar(flat.contact.force));
@@ -342,7 +353,8 @@ mod tests {
                 let (fint, mut trip) = model.assemble(&u).unwrap();
                 let mut fext = vec![0.0; n];
                 bare.apply(&model.mesh, &u, z_plate, &[], &mut fext, &mut trip, &mut vec![0.0; n]);
-                let res: Vec<f64> = (0..n).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] + g[i] }).collect();
+                let res: Vec<f64> =
+                    (0..n).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] + g[i] }).collect();
                 if res.iter().fold(0.0f64, |m, v| m.max(v.abs())) < tol {
                     break;
                 }

@@ -189,7 +189,8 @@ impl IndentParams {
         };
         let sh = &self.shell;
         let model = Model::new(sh.mesh(), sh.E, sh.nu, base);
-        let plate = Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
+        let plate =
+            Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
     }
 
@@ -258,10 +259,13 @@ impl Kind for FemIndent {
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
-            .with_f64("slip_fraction", col(&|s| {
-                let active = s.contact.active.iter().filter(|&&a| a).count();
-                s.contact.slipping.iter().filter(|&&x| x).count() as f64 / active.max(1) as f64
-            }))
+            .with_f64(
+                "slip_fraction",
+                col(&|s| {
+                    let active = s.contact.active.iter().filter(|&&a| a).count();
+                    s.contact.slipping.iter().filter(|&&x| x).count() as f64 / active.max(1) as f64
+                }),
+            )
             .with_f64("p_max_over_E", col(&|s| s.contact.pressure.iter().copied().fold(0.0, f64::max) / sh.E))
             .with_f64("A_bar", col(&|s| 2.0 * s.contact.area / (std::f64::consts::PI * sh.R * sh.R)))
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))

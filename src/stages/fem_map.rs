@@ -175,7 +175,8 @@ pub struct FemBuckling;
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
     const VERSION: u32 = 2;
-    const DOC: &'static str = "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
+    const DOC: &'static str =
+        "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
     type Params = BucklingParams;
 
@@ -197,10 +198,8 @@ impl Kind for FemBuckling {
         let fb = m.f_bar(p.h_over_R);
         let b = c.buckling;
         let h = m.h(p.h_over_R);
-        let (iterations, residual) = c
-            .points
-            .iter()
-            .fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
+        let (iterations, residual) =
+            c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
         // The loop area only for a complete cycle (a partial one has no closed integral).
         let w = if p.dissipation && c.complete { c.dissipated() } else { 0.0 };
         Ok(Table::new()
@@ -360,7 +359,8 @@ pub struct FemBucklingLimit;
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
     const VERSION: u32 = 2;
-    const DOC: &'static str = "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
+    const DOC: &'static str =
+        "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
     type Params = LimitParams;
 
@@ -434,7 +434,8 @@ pub struct FemGammaCMap;
 impl Kind for FemGammaCMap {
     const NAME: &'static str = "fem.gamma_c_map";
     const VERSION: u32 = 1;
-    const DOC: &'static str = "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
+    const DOC: &'static str =
+        "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
     type Params = MapParams;
 
     fn referenced_stages(p: &MapParams) -> Vec<(String, String)> {
