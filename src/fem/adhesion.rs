@@ -39,6 +39,20 @@ const GAUSS5: [(f64, f64); GAUSS_POINTS] = [
     (0.906_179_845_938_664, 0.236_926_885_056_189_1),
 ];
 
+/// Which adhesive tangent to assemble.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tangent {
+    /// The exact second derivative (Newton's quadratic convergence).
+    Exact,
+    /// Exact, but with the lifting side's curvature 16 dgamma / g0^2 where the surface
+    /// touches (the stability test's `AdhesiveHold::LennardJones`).
+    Lifting,
+    /// The curvature clipped at zero where the law softens (g' > 0.2 g0): a positive
+    /// semi-definite adhesive stiffness for the Newton direction when the exact one, with
+    /// strong adhesion, is indefinite enough to send every step into inverted elements.
+    Convex,
+}
+
 /// The Lennard-Jones interface law of Eq. 3.3.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Adhesion {
@@ -88,8 +102,7 @@ impl Adhesion {
     /// Adds dU/du to `residual`, d2U/du2 to `triplets` and d(dU/du)/d delta to `q` (all on
     /// the full dof vector) for displacements `u` and the plate at z = `z_plate`; returns
     /// the adhesive part of the plate force (dU/d delta, counted like a pressing force:
-    /// negative, a pull) and the energy U. `lifting`: use the lifting-side curvature
-    /// where the surface touches (for the stability test; then only the tangent is of use).
+    /// negative, a pull) and the energy U. `tangent` chooses the tangent (`Tangent`).
     #[allow(clippy::too_many_arguments)]
     pub fn apply(
         &self,
@@ -99,7 +112,7 @@ impl Adhesion {
         residual: &mut [f64],
         triplets: &mut Vec<(usize, usize, f64)>,
         q: &mut [f64],
-        lifting: bool,
+        tangent: Tangent,
     ) -> (f64, f64) {
         let (mut force, mut energy) = (0.0, 0.0);
         for e in 0..(mesh.outer.len() - 1) / 2 {
@@ -114,7 +127,8 @@ impl Adhesion {
                 let rq: f64 = (0..3).map(|k| n[k] * r[k]).sum();
                 let rx: f64 = (0..3).map(|k| dn[k] * r[k]).sum();
                 let zq: f64 = (0..3).map(|k| n[k] * z[k]).sum();
-                let law = self.law(z_plate - zq, lifting);
+                let law = self.law(z_plate - zq, tangent == Tangent::Lifting);
+                let d2 = if tangent == Tangent::Convex { law.d2.max(0.0) } else { law.d2 };
                 let jac = 2.0 * PI * rq * rx;
                 let djac: [f64; 3] = std::array::from_fn(|k| 2.0 * PI * (n[k] * rx + rq * dn[k]));
                 energy += w * law.phi * jac;
@@ -125,7 +139,7 @@ impl Adhesion {
                     q[zz(k)] += w * law.d2 * n[k] * jac;
                     q[zr(k)] -= w * law.d1 * djac[k];
                     for l in 0..3 {
-                        let kzz = w * law.d2 * n[k] * n[l] * jac;
+                        let kzz = w * d2 * n[k] * n[l] * jac;
                         let kzr = -w * law.d1 * n[k] * djac[l];
                         let krr = w * law.phi * 2.0 * PI * (n[k] * dn[l] + dn[k] * n[l]);
                         if kzz != 0.0 {
@@ -204,7 +218,7 @@ mod tests {
             let mut res = vec![0.0; nd];
             let mut trip = Vec::new();
             let mut q = vec![0.0; nd];
-            let (f, en) = a.apply(&mesh, u, zp, &mut res, &mut trip, &mut q, false);
+            let (f, en) = a.apply(&mesh, u, zp, &mut res, &mut trip, &mut q, Tangent::Exact);
             let mut k = vec![vec![0.0; nd]; nd];
             for (i, j, v) in trip {
                 k[i][j] += v;
@@ -265,7 +279,7 @@ mod tests {
             let nd = 2 * mesh.n_nodes();
             let mut res = vec![0.0; nd];
             let mut q = vec![0.0; nd];
-            let (f, _) = a.apply(&mesh, &vec![0.0; nd], ro + 0.01, &mut res, &mut Vec::new(), &mut q, false);
+            let (f, _) = a.apply(&mesh, &vec![0.0; nd], ro + 0.01, &mut res, &mut Vec::new(), &mut q, Tangent::Exact);
             assert!((-f / exact - 1.0).abs() < tol, "{n}: {} vs {exact}", -f);
         }
     }

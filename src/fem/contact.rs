@@ -19,7 +19,7 @@
 //! k_t w_a (stick) or the non-symmetric mu k_n w_a sign(t) coupling of the shear to the
 //! penetration (slip).
 
-use super::adhesion::Adhesion;
+use super::adhesion::{Adhesion, Tangent};
 use super::mesh::ShellMesh;
 
 /// The contact state of the outer nodes at one configuration.
@@ -120,7 +120,7 @@ impl Plate {
             .sum();
         let adhesive = self.adhesion.map_or(0.0, |ad| {
             let n = 2 * mesh.n_nodes();
-            ad.apply(mesh, u, z_plate, &mut vec![0.0; n], &mut Vec::new(), &mut vec![0.0; n], false).1
+            ad.apply(mesh, u, z_plate, &mut vec![0.0; n], &mut Vec::new(), &mut vec![0.0; n], Tangent::Exact).1
         });
         penalty + adhesive
     }
@@ -140,6 +140,22 @@ impl Plate {
         f_ext: &mut [f64],
         triplets: &mut Vec<(usize, usize, f64)>,
         q: &mut [f64],
+    ) -> ContactState {
+        self.apply_with(mesh, u, z_plate, stick, f_ext, triplets, q, Tangent::Exact)
+    }
+
+    /// `apply` with a choice of adhesive tangent.
+    #[allow(clippy::too_many_arguments)]
+    pub fn apply_with(
+        &self,
+        mesh: &ShellMesh,
+        u: &[f64],
+        z_plate: f64,
+        stick: &[f64],
+        f_ext: &mut [f64],
+        triplets: &mut Vec<(usize, usize, f64)>,
+        q: &mut [f64],
+        tangent: Tangent,
     ) -> ContactState {
         let n = mesh.outer.len();
         let mut s = ContactState {
@@ -190,7 +206,7 @@ impl Plate {
         }
         if let Some(ad) = self.adhesion {
             let mut grad = vec![0.0; f_ext.len()];
-            let (pull, _) = ad.apply(mesh, u, z_plate, &mut grad, triplets, q, false);
+            let (pull, _) = ad.apply(mesh, u, z_plate, &mut grad, triplets, q, tangent);
             f_ext.iter_mut().zip(&grad).for_each(|(f, g)| *f -= g);
             s.adhesive = pull;
             s.force += pull;

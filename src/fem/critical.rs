@@ -9,8 +9,9 @@
 //! reported. The analytic estimate of Eq. 3.7, gamma_c = E h (r/R)^4, uses the r of the
 //! last probe that buckled (the instability closest to gamma_c).
 //!
-//! A probe whose loading fails to converge before either answer is counted as buckling
-//! (the snap is where Newton on the flattened branch fails), and reported.
+//! A probe whose loading fails to converge before either answer is counted as buckling if
+//! it got past a quarter of delta_max (the snap is where Newton on the flattened branch
+//! fails), else as not buckling; either way it is reported.
 
 use super::contact::Plate;
 use super::cycle::{load_unload, CycleOptions, Jump};
@@ -24,11 +25,16 @@ pub struct Probe {
     pub buckling: Option<Jump>,
     /// The loading leg converged to its answer.
     pub complete: bool,
+    /// The largest delta reached, over delta_max.
+    pub reached: f64,
 }
 
 impl Probe {
+    /// A snap, or a loading that failed after a quarter of delta_max (where Newton on the
+    /// flattened branch fails, the snap is near). A loading that failed earlier (strong
+    /// adhesion at first contact) is no evidence of buckling: counted as not buckling.
     pub fn buckles(&self) -> bool {
-        self.buckling.is_some() || !self.complete
+        self.buckling.is_some() || (!self.complete && self.reached > 0.25)
     }
 }
 
@@ -50,6 +56,13 @@ impl Bracket {
         } else {
             0.5 * (self.lo + self.hi)
         }
+    }
+
+    /// Both ends of the bracket rest on probes that converged to their answer (a failed
+    /// probe decides a side by the rule of `Probe::buckles` only).
+    pub fn reliable(&self) -> bool {
+        let ok = |x: f64| self.probes.iter().find(|p| p.x == x).is_none_or(|p| p.complete);
+        self.found && ok(self.lo) && ok(self.hi)
     }
 
     /// The last probe on the buckling side with a buckling event (the closest to the
@@ -122,7 +135,8 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
 /// One loading probe of `model` against `plate`, stopping at the snap-through.
 pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) -> Probe {
     let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
-    Probe { x, buckling: c.buckling, complete: c.complete }
+    let reached = c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
+    Probe { x, buckling: c.buckling, complete: c.complete, reached }
 }
 
 #[cfg(test)]
@@ -139,6 +153,7 @@ mod tests {
             calls += 1;
             Probe {
                 x,
+                reached: 1.0,
                 buckling: (x < 0.0123).then_some(Jump {
                     delta: 0.0,
                     force_before: 1.0,
@@ -154,9 +169,9 @@ mod tests {
         assert!(b.found && b.lo < 0.0123 && b.hi >= 0.0123 && b.hi / b.lo - 1.0 <= 0.02, "{b:?}");
         assert_eq!(b.probes.len(), calls);
         // Nothing above x_max: not found; nothing at 0: [0, 0].
-        let b = bracket(|x| Probe { x, buckling: None, complete: false }, 1e-3, 3.0, 1.0, 0.02);
+        let b = bracket(|x| Probe { x, buckling: None, complete: false, reached: 0.5 }, 1e-3, 3.0, 1.0, 0.02);
         assert!(!b.found && b.lo == 1.0);
-        let b = bracket(|x| Probe { x, buckling: None, complete: true }, 1e-3, 3.0, 1.0, 0.02);
+        let b = bracket(|x| Probe { x, buckling: None, complete: true, reached: 1.0 }, 1e-3, 3.0, 1.0, 0.02);
         assert!(b.found && b.hi == 0.0 && b.probes.len() == 1);
     }
 

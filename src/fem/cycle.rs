@@ -136,29 +136,44 @@ fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<Step> {
     })
 }
 
-/// The adhering state at delta = 0: pressed in to delta = d (doubling from `step` until
-/// Newton converges from the reference), then withdrawn to delta = 0 in quarter steps.
+/// The adhering state at delta = 0. Pressed in by four load steps without adhesion, the
+/// adhesion is switched on in eight increments (each Newton from the last: strong adhesion
+/// pulls a wide annulus onto the plate, too far for one Newton), and the plate is withdrawn
+/// to delta = 0 in adaptive steps. If it cannot be withdrawn all the way (the contact would
+/// be torn off), the state at the smallest delta reached starts the loading.
 fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
-    let zero = vec![0.0; model.n_dofs()];
+    let ad = plate.adhesion?;
     let opt = Options { max_iterations: 60, ..Options::default() };
-    let mut d = step;
-    let mut s = loop {
-        let s = solve_at(model, plate, e, d, &zero, &[], opt);
-        if s.converged {
-            break s;
-        }
-        d *= 2.0;
-        if d > 16.0 * step {
+    let zero = vec![0.0; model.n_dofs()];
+    let bare = Plate { adhesion: None, ..plate.clone() };
+    // Pressed in by four load steps: a contact disk wide enough that the adhesive zone
+    // around it grows from its rim rather than snapping on.
+    let press = 4.0 * step;
+    let mut s = solve_at(model, &bare, e, press, &zero, &[], opt);
+    const RAMP: usize = 8;
+    for k in 1..=RAMP {
+        let partial = Plate {
+            adhesion: Some(super::adhesion::Adhesion { gamma: ad.gamma * k as f64 / RAMP as f64, ..ad }),
+            ..plate.clone()
+        };
+        if !s.converged {
             return None;
         }
-    };
-    let n = (4.0 * d / step).ceil() as usize;
-    for i in (0..n).rev() {
-        let next = solve_from(model, plate, e, d * i as f64 / n as f64, &s, opt);
-        if !next.converged {
-            return None;
+        s = solve_at(model, &partial, e, press, &s.u, &s.contact.stick, opt);
+    }
+    if !s.converged {
+        return None;
+    }
+    let max_dd = 0.25 * step;
+    let mut dd = max_dd;
+    while s.delta > 0.0 && dd > step / 1024.0 {
+        let next = solve_from(model, plate, e, (s.delta - dd).max(0.0), &s, opt);
+        if next.converged {
+            s = next;
+            dd = (1.5 * dd).min(max_dd);
+        } else {
+            dd *= 0.5;
         }
-        s = next;
     }
     s.iterations = 0;
     Some(s)

@@ -7,6 +7,7 @@
 //! Units: lengths of the mesh, stresses in units of E (E = 1 here is fine: the outputs are
 //! the dimensionless F R/(E h^3), delta/R, p/E).
 
+use super::adhesion::Tangent;
 use super::contact::{ContactState, Plate};
 use super::system::{Model, Triplets};
 
@@ -57,10 +58,22 @@ pub(crate) struct Evaluation {
 /// contact state, for displacements `u`, the plate at `delta` and the friction anchors
 /// `stick` of the last converged state; None if an element is inverted.
 pub(crate) fn evaluate(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]) -> Option<Evaluation> {
+    evaluate_with(model, plate, delta, u, stick, Tangent::Exact)
+}
+
+/// `evaluate` with a choice of adhesive tangent.
+fn evaluate_with(
+    model: &Model,
+    plate: &Plate,
+    delta: f64,
+    u: &[f64],
+    stick: &[f64],
+    tangent: Tangent,
+) -> Option<Evaluation> {
     let (fint, mut trip) = model.assemble(u)?;
     let mut fext = vec![0.0; model.n_dofs()];
     let mut q = vec![0.0; model.n_dofs()];
-    let state = plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q);
+    let state = plate.apply_with(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q, tangent);
     let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
     let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| {
@@ -91,43 +104,43 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
             stable: false,
         };
     };
-    let mut iterations = 0;
-    while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
-        iterations += 1;
-        let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
-        let Ok(du) = model.solve(&cur.tangent, &rhs) else { break };
-        // Backtracking on the residual norm (and on inverted elements). If no step down to
-        // 1/128 lowers it, the full step is taken: at the kinks of the interface laws
-        // (contact status, stick/slip) a tiny step only sends Newton back where it came from,
-        // a 2-cycle; the full step lets it change the status set.
+    // Backtracking on the residual norm (and on inverted elements) along `du`. If no step
+    // down to 1/128 lowers it, the longest admissible step is taken: at the kinks of the
+    // interface laws (contact status, stick/slip) a tiny step only sends Newton back where it
+    // came from, a 2-cycle; the long step lets it change the status set.
+    let line_search = |u: &[f64], cur: &Evaluation, du: &[f64]| -> Option<(Vec<f64>, Evaluation)> {
         let mut step = 1.0;
-        let mut accepted = false;
-        let mut full: Option<(Vec<f64>, Evaluation)> = None;
+        let mut longest: Option<(Vec<f64>, Evaluation)> = None;
         for _ in 0..8 {
-            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + step * b).collect();
+            let trial: Vec<f64> = u.iter().zip(du).map(|(a, b)| a + step * b).collect();
             if let Some(next) = residual_of(&trial) {
                 if next.norm < cur.norm {
-                    u = trial;
-                    cur = next;
-                    accepted = true;
-                    break;
+                    return Some((trial, next));
                 }
-                if full.is_none() && step == 1.0 {
-                    full = Some((trial, next));
+                if longest.is_none() {
+                    longest = Some((trial, next));
                 }
             }
             step *= 0.5;
         }
-        if !accepted {
-            if let Some((trial, next)) = full {
-                u = trial;
-                cur = next;
-                accepted = true;
-            }
+        longest
+    };
+    let mut iterations = 0;
+    while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
+        iterations += 1;
+        let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
+        let mut next = model.solve(&cur.tangent, &rhs).ok().and_then(|du| line_search(&u, &cur, &du));
+        if next.is_none() && plate.adhesion.is_some() {
+            // Every step along the exact direction inverts elements: strong adhesion makes
+            // the tangent indefinite where the law softens. Take the direction of the
+            // convexified tangent instead (`adhesion::Tangent::Convex`).
+            next = evaluate_with(model, plate, delta, &u, stick, Tangent::Convex)
+                .and_then(|convex| model.solve(&convex.tangent, &rhs).ok())
+                .and_then(|du| line_search(&u, &cur, &du));
         }
-        if !accepted {
-            break;
-        }
+        let Some((trial, ev)) = next else { break };
+        u = trial;
+        cur = ev;
     }
     let converged = cur.norm <= opt.tol * scale;
     let stable = converged && model.is_stable(&cur.tangent);
@@ -347,7 +360,7 @@ mod tests {
         let (mut passes, mut inner) = (0, 0);
         loop {
             let mut g = vec![0.0; n];
-            ad.apply(&model.mesh, &u, z_plate, &mut g, &mut Vec::new(), &mut vec![0.0; n], false);
+            ad.apply(&model.mesh, &u, z_plate, &mut g, &mut Vec::new(), &mut vec![0.0; n], Tangent::Exact);
             // Newton on f_int - f_pen + g = 0 with g fixed.
             for _ in 0..30 {
                 let (fint, mut trip) = model.assemble(&u).unwrap();

@@ -28,6 +28,7 @@
 //! the snap disappears near gamma/(E h) = 1.3e-3. The thesis (staggered adhesion, ANSYS)
 //! finds gamma_c/(E h) ~ 5e-2 there: its adhesion holds the shell even less.
 
+use super::adhesion::Tangent;
 use super::contact::Plate;
 use super::indent::{apex_z, Step};
 use super::system::Model;
@@ -70,9 +71,9 @@ pub fn unilaterally_stable(model: &Model, plate: &Plate, s: &Step, threshold: f6
     // The whole adhesive tangent, with the lifting side's curvature where the surface
     // touches the plate.
     if let Some(ad) = plate.adhesion {
-        let lifting = hold == AdhesiveHold::LennardJones;
+        let tangent = if hold == AdhesiveHold::LennardJones { Tangent::Lifting } else { Tangent::Exact };
         let n = model.n_dofs();
-        ad.apply(&model.mesh, &s.u, apex_z(model) - s.delta, &mut vec![0.0; n], &mut k, &mut vec![0.0; n], lifting);
+        ad.apply(&model.mesh, &s.u, apex_z(model) - s.delta, &mut vec![0.0; n], &mut k, &mut vec![0.0; n], tangent);
     }
     model.is_stable(&k)
 }
