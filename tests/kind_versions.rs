@@ -11,6 +11,11 @@ use repro::pipeline::table::Table;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 
+/// A few elements and two load steps: the map stages' reference runs take milliseconds.
+fn tiny_map_model() -> Value {
+    json!({"n_meridian": 12, "n_thickness": 2, "delta_max": 0.02, "steps": 2})
+}
+
 fn reference_params() -> BTreeMap<&'static str, Value> {
     BTreeMap::from([
         ("theory.maugis_dugdale", json!({"lambda": 0.7, "A_min": 0.1, "A_max": 2.0, "n": 7})),
@@ -41,6 +46,10 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
             json!({"cycle": {"shell": {"R": 15.0, "h": 1.0, "n_meridian": 12, "n_thickness": 2}, "delta_max": 0.02, "steps": 2},
                    "points": [{"label": "a", "delta": 0.02}]}),
         ),
+        ("fem.buckling", json!({"h_over_R": 0.06, "gamma_over_Eh": 0.001, "mu": 0.3, "model": tiny_map_model()})),
+        ("fem.gamma_c", json!({"h_over_R": 0.06, "rel_tol": 1.0, "gamma_max": 0.01, "model": tiny_map_model()})),
+        ("fem.buckling_limit", json!({"h_lo": 0.1, "h_hi": 0.2, "model": tiny_map_model()})),
+        ("fem.gamma_c_map", json!({"gamma_c": "gc"})),
         (
             "bem.maxima",
             json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0_range": [0.1, 10.0], "grid": 4, "log_tol": 0.2, "n": 40, "half_length": 5.0}),
@@ -82,7 +91,22 @@ fn outputs_change_only_with_a_version_bump() {
         .with_f64("V0", v0.clone())
         .with_f64("F_T", v0.iter().map(|&v| if v < 1.0 { v } else { v.sqrt() }).collect())
         .with("converged", repro::pipeline::table::ColumnData::Bool(vec![true; 13]));
-    let inputs = Inputs { tables: BTreeMap::from([("input".to_string(), &input), ("rolling".to_string(), &rolling)]) };
+    // A gamma_c sweep for fem.gamma_c_map: two h/R at two mu.
+    let gc = Table::new()
+        .with_f64("h_over_R", vec![0.04, 0.06, 0.04, 0.06])
+        .with_f64("mu", vec![0.0, 0.0, 0.5, 0.5])
+        .with_f64("gamma_c_over_Eh", vec![0.01, 0.02, 0.005, 0.01])
+        .with_f64("gamma_lo_over_Eh", vec![0.009, 0.018, 0.0045, 0.009])
+        .with_f64("gamma_hi_over_Eh", vec![0.011, 0.022, 0.0055, 0.011])
+        .with_f64("eq3_7_over_Eh", vec![0.03, 0.04, 0.0, 0.0])
+        .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]));
+    let inputs = Inputs {
+        tables: BTreeMap::from([
+            ("input".to_string(), &input),
+            ("rolling".to_string(), &rolling),
+            ("gc".to_string(), &gc),
+        ]),
+    };
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kind_fingerprints.json");
     let recorded: BTreeMap<String, String> =
         std::fs::read(&path).ok().and_then(|b| serde_json::from_slice(&b).ok()).unwrap_or_default();

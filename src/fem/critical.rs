@@ -135,7 +135,8 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
 /// One loading probe of `model` against `plate`, stopping at the snap-through.
 pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) -> Probe {
     let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
-    let reached = c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
+    let reached =
+        c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
     Probe { x, buckling: c.buckling, complete: c.complete, reached }
 }
 
