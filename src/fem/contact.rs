@@ -126,27 +126,12 @@ impl Plate {
     }
 
     /// Interface forces (added to `f_ext`, full dof vector), tangent entries of the residual
-    /// f_int - f_ext (pushed to `triplets`), the residual's derivative with respect to the
-    /// plate displacement delta (added to `q`) and the state, for the plate at z = z_plate,
-    /// displacements u and the anchors `stick` of the last converged state (empty: the
-    /// reference radii).
+    /// f_int - f_ext (pushed to `triplets`, with the adhesive tangent chosen by `tangent`), the
+    /// residual's derivative with respect to the plate displacement delta (added to `q`) and
+    /// the state, for the plate at z = z_plate, displacements u and the anchors `stick` of the
+    /// last converged state (empty: the reference radii).
     #[allow(clippy::too_many_arguments)]
     pub fn apply(
-        &self,
-        mesh: &ShellMesh,
-        u: &[f64],
-        z_plate: f64,
-        stick: &[f64],
-        f_ext: &mut [f64],
-        triplets: &mut Vec<(usize, usize, f64)>,
-        q: &mut [f64],
-    ) -> ContactState {
-        self.apply_with(mesh, u, z_plate, stick, f_ext, triplets, q, Tangent::Exact)
-    }
-
-    /// `apply` with a choice of adhesive tangent.
-    #[allow(clippy::too_many_arguments)]
-    pub fn apply_with(
         &self,
         mesh: &ShellMesh,
         u: &[f64],
@@ -258,7 +243,7 @@ mod tests {
         for (s_disp, slips) in [(0.2 * s_star, false), (3.0 * s_star, true)] {
             let (u, zp) = pressed(&mesh, d, |_| s_disp);
             let mut f = vec![0.0; nd];
-            let st = plate.apply(&mesh, &u, zp, &anchors, &mut f, &mut Vec::new(), &mut vec![0.0; nd]);
+            let st = plate.apply(&mesh, &u, zp, &anchors, &mut f, &mut Vec::new(), &mut vec![0.0; nd], Tangent::Exact);
             let shear: f64 = mesh.outer.iter().map(|&a| f[2 * a]).sum();
             let traction = if slips { 0.5 * p } else { plate.friction.unwrap().stiffness * s_disp };
             assert!(((-shear) / (traction * st.area) - 1.0).abs() < 1e-12, "{shear} vs {}", traction * st.area);
@@ -268,7 +253,16 @@ mod tests {
                     assert!((st.shear[k] + traction).abs() < 1e-12 * traction);
                     // With the returned anchors the same state carries the same shear (at the limit).
                     let mut f2 = vec![0.0; nd];
-                    let st2 = plate.apply(&mesh, &u, zp, &st.stick, &mut f2, &mut Vec::new(), &mut vec![0.0; nd]);
+                    let st2 = plate.apply(
+                        &mesh,
+                        &u,
+                        zp,
+                        &st.stick,
+                        &mut f2,
+                        &mut Vec::new(),
+                        &mut vec![0.0; nd],
+                        Tangent::Exact,
+                    );
                     assert!((st2.shear[k] - st.shear[k]).abs() < 1e-9 * traction);
                 }
             }
@@ -291,7 +285,7 @@ mod tests {
             let mut f = vec![0.0; nd];
             let mut t = Vec::new();
             let mut q = vec![0.0; nd];
-            let st = plate.apply(&mesh, u, zp, &anchors, &mut f, &mut t, &mut q);
+            let st = plate.apply(&mesh, u, zp, &anchors, &mut f, &mut t, &mut q, Tangent::Exact);
             let mut k = vec![vec![0.0; nd]; nd];
             for (i, j, v) in t {
                 k[i][j] += v;

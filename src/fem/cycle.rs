@@ -150,19 +150,19 @@ fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
     // around it grows from its rim rather than snapping on.
     let press = 4.0 * step;
     let mut s = solve_at(model, &bare, e, press, &zero, &[], opt);
+    if !s.converged {
+        return None;
+    }
     const RAMP: usize = 8;
     for k in 1..=RAMP {
         let partial = Plate {
             adhesion: Some(super::adhesion::Adhesion { gamma: ad.gamma * k as f64 / RAMP as f64, ..ad }),
             ..plate.clone()
         };
+        s = solve_at(model, &partial, e, press, &s.u, &s.contact.stick, opt);
         if !s.converged {
             return None;
         }
-        s = solve_at(model, &partial, e, press, &s.u, &s.contact.stick, opt);
-    }
-    if !s.converged {
-        return None;
     }
     let max_dd = 0.25 * step;
     let mut dd = max_dd;

@@ -73,7 +73,7 @@ fn evaluate_with(
     let (fint, mut trip) = model.assemble(u)?;
     let mut fext = vec![0.0; model.n_dofs()];
     let mut q = vec![0.0; model.n_dofs()];
-    let state = plate.apply_with(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q, tangent);
+    let state = plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q, tangent);
     let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
     let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| {
@@ -365,7 +365,7 @@ mod tests {
             for _ in 0..30 {
                 let (fint, mut trip) = model.assemble(&u).unwrap();
                 let mut fext = vec![0.0; n];
-                bare.apply(&model.mesh, &u, z_plate, &[], &mut fext, &mut trip, &mut vec![0.0; n]);
+                bare.apply(&model.mesh, &u, z_plate, &[], &mut fext, &mut trip, &mut vec![0.0; n], Tangent::Exact);
                 let res: Vec<f64> =
                     (0..n).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] + g[i] }).collect();
                 if res.iter().fold(0.0f64, |m, v| m.max(v.abs())) < tol {

@@ -9,7 +9,7 @@
 
 use super::{check, finite};
 use crate::fem::contact::Plate;
-use crate::fem::critical::{bracket, probe, Bracket, Probe};
+use crate::fem::critical::{bracket, probe};
 use crate::fem::cycle::{load_unload, CycleOptions};
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
@@ -256,11 +256,6 @@ pub struct GammaCParams {
     pub model: MapModel,
 }
 
-fn probe_rows(b: &Bracket, scale: f64) -> (f64, usize) {
-    let unconverged = b.probes.iter().filter(|p: &&Probe| !p.complete).count();
-    (b.mid() / scale, unconverged)
-}
-
 /// The critical adhesion at one (h/R, mu).
 pub struct FemGammaC;
 
@@ -299,7 +294,8 @@ impl Kind for FemGammaC {
             p.gamma_max * scale,
             p.rel_tol,
         );
-        let (mid, unconverged) = probe_rows(&b, scale);
+        let mid = b.mid() / scale;
+        let unconverged = b.probes.iter().filter(|q| !q.complete).count();
         let last = b.last_buckled().and_then(|q| q.buckling);
         let r = last.map_or(0.0, |j| j.radius_before / m.R);
         let buckles_at_zero = b.probes.first().is_some_and(|q| q.buckles());
