@@ -107,8 +107,11 @@ fn the_buckling_map_stages_reach_their_tables() {
     let g = s.table("gc");
     let (lo, hi, mid) =
         (column(&g, "gamma_lo_over_Eh")[0], column(&g, "gamma_hi_over_Eh")[0], column(&g, "gamma_c_over_Eh")[0]);
-    // The unit test's bracket on this mesh: [0.0095, 0.0104].
-    assert!(lo < mid && mid < hi && hi / lo - 1.0 <= 0.3 && lo > 0.005 && hi < 0.02, "{lo} {mid} {hi}");
+    // On this mesh the answer is not monotonic in gamma near the threshold: this bracket
+    // (starting at 0.008) closes on [0.0067, 0.0080] (0.008 does not snap), the unit test's
+    // (starting at 0.003) on [0.0085, 0.0101] (0.0085 does); a 10% bracket gave [0.0095,
+    // 0.0104]. The bounds cover that window of about 1.5 and no factor of 2.
+    assert!(lo < mid && mid < hi && hi / lo - 1.0 <= 0.3 && lo > 0.006 && hi < 0.0125, "{lo} {mid} {hi}");
     assert_eq!(column(&g, "found")[0], 1.0);
     let r = column(&g, "r_over_R")[0];
     assert!(r > 0.3 && r < 0.9 && (column(&g, "eq3_7_over_Eh")[0] - r.powi(4)).abs() < 1e-12);

@@ -198,7 +198,8 @@ mod tests {
         let b = bracket(|g| probe(&model, &plate(g), e, g, opt), 3e-3 * e * h, 2.0, 0.1 * e * h, 0.2);
         assert!(b.found && b.lo > 0.0, "{b:?}");
         let (lo, hi) = (b.lo / (e * h), b.hi / (e * h));
-        assert!(lo > 5e-3 && hi < 2e-2, "{lo} {hi}");
+        // A factor-2 error in gamma (or in the law's work of separation) would fall outside.
+        assert!(lo > 8e-3 && hi < 1.25e-2, "{lo} {hi}");
         // Both sides again, independently of the bracket's own probes: below, a snap; above,
         // none up to delta_max.
         let below = probe(&model, &plate(0.9 * b.lo), e, 0.9 * b.lo, opt);
