@@ -10,8 +10,17 @@ build:
 figures: build
 	$(CARGO) run --quiet -- run $(PIPELINE)
 
+# The SLURM executor tests need a cluster: ci/slurm/test.sh starts a single-node one (root,
+# Debian's slurm-wlm and munge; .ci/run installs them and sets REPRO_REQUIRE_SLURM=1).
 test:
-	$(CARGO) test
+	env -u REPRO_REQUIRE_SLURM $(CARGO) test
+	@if [ "$$(id -u)" = 0 ] && command -v slurmctld >/dev/null 2>&1 && command -v munged >/dev/null 2>&1; then \
+		CARGO=$(CARGO) ci/slurm/test.sh; \
+	elif [ -n "$$REPRO_REQUIRE_SLURM" ]; then \
+		echo "make test: REPRO_REQUIRE_SLURM is set but SLURM (slurm-wlm, munge) is not installed or this is not root" >&2; exit 1; \
+	else \
+		echo "make test: SLURM executor tests skipped (need root and Debian's slurm-wlm and munge; .ci/run installs them)"; \
+	fi
 
 schema: build
 	$(CARGO) run --quiet -- schema > pipelines/schema.json

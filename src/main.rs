@@ -3,7 +3,8 @@
 use anyhow::Context;
 use clap::{Parser, Subcommand};
 use repro::pipeline::cache::{CacheBusy, LockMode};
-use repro::pipeline::executor::{self, RunOptions, UsageError};
+use repro::pipeline::executor::{self, Executor, RunOptions, UsageError};
+use repro::pipeline::slurm::SlurmOptions;
 use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
 use repro::pipeline::{graph, schema};
 use std::path::{Path, PathBuf};
@@ -29,6 +30,12 @@ struct CacheArg {
     /// Cache directory.
     #[arg(long, default_value = "cache")]
     cache: PathBuf,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, PartialEq)]
+enum ExecutorArg {
+    Local,
+    Slurm,
 }
 
 #[derive(Subcommand)]
@@ -70,6 +77,30 @@ enum Command {
         /// No progress bars.
         #[arg(long, short)]
         quiet: bool,
+        /// Where tasks run: `local` (threads here) or `slurm` (job arrays; the cache must be
+        /// on a file system the compute nodes share).
+        #[arg(long, value_enum, default_value = "local")]
+        executor: ExecutorArg,
+        /// SLURM partition (default: the cluster's default partition).
+        #[arg(long)]
+        partition: Option<String>,
+        /// SLURM: at most this many tasks of an array run at once.
+        #[arg(long)]
+        max_jobs: Option<usize>,
+        /// SLURM: resubmissions of a task whose worker ended without a result.
+        #[arg(long, default_value_t = 2)]
+        retries: u32,
+    },
+    /// Compute one task of a SLURM job array (run by the SLURM executor, not by hand).
+    Worker {
+        #[command(flatten)]
+        cache: CacheArg,
+        /// The array's task list (cache/slurm/lists/...).
+        #[arg(long)]
+        list: PathBuf,
+        /// Line of the list to run (default: $SLURM_ARRAY_TASK_ID).
+        #[arg(long)]
+        index: Option<usize>,
     },
     /// Which tasks are stale, and why (nothing is run).
     Status {
@@ -154,8 +185,18 @@ fn main() -> ExitCode {
             figures,
             tables,
             quiet,
+            executor,
+            partition,
+            max_jobs,
+            retries,
         } => {
             let p = load(&pipeline, &registry)?;
+            let executor = match executor {
+                ExecutorArg::Local => Executor::Local,
+                ExecutorArg::Slurm => {
+                    Executor::Slurm(SlurmOptions { partition, max_jobs, retries, ..Default::default() })
+                }
+            };
             let opts = RunOptions {
                 cache_dir: cache.cache,
                 figures_dir: figures,
@@ -166,6 +207,7 @@ fn main() -> ExitCode {
                 targets,
                 lock: if no_wait { LockMode::Refuse } else { LockMode::Wait },
                 progress: !quiet,
+                executor,
             };
             let rep = executor::run(&p, &registry, &opts)?;
             if let Some(path) = report {
@@ -176,6 +218,17 @@ fn main() -> ExitCode {
                 eprintln!("  wrote {f}");
             }
             Ok(if rep.any_failed() { ExitCode::from(EXIT_FAILED_TASKS) } else { ExitCode::SUCCESS })
+        }
+        Command::Worker { cache, list, index } => {
+            let index = match index {
+                Some(i) => i,
+                None => std::env::var("SLURM_ARRAY_TASK_ID")
+                    .ok()
+                    .and_then(|v| v.parse().ok())
+                    .ok_or_else(|| UsageError("worker: give --index or run inside a SLURM array".into()))?,
+            };
+            let ok = repro::pipeline::slurm::work(&registry, &cache.cache, &list, index)?;
+            Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
         }
         Command::Status { pipeline, cache, explain } => {
             let p = load(&pipeline, &registry)?;

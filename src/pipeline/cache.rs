@@ -9,7 +9,10 @@
 //!   (used to explain why a task is stale).
 //! - `runs/last.json`: the report of the last run.
 //! - `tmp/`: files being written; renamed into place when complete (atomic writes).
-//! - `lock`: held (an OS file lock) by the one `repro` that uses this cache.
+//! - `worker-tmp/`: the same for SLURM workers (cleaned only of day-old files).
+//! - `slurm/`: task specifications, task lists, logs and failure records of the SLURM
+//!   executor (see [`super::slurm`]).
+//! - `lock`: held (an OS file lock) by the one `repro` coordinator that uses this cache.
 
 use super::key::{content_hash, Hash};
 use super::kind::Output;
@@ -23,6 +26,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 const ENTRY_MAGIC: &str = "repro-entry-1";
+/// Where SLURM workers stage their atomic writes.
+const WORKER_TMP: &str = "worker-tmp";
 
 /// Writes `bytes` to `path` atomically: a temporary file in `tmp_dir` (same file system),
 /// flushed to disk, then renamed over `path`.
@@ -38,7 +43,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
         let mut f = File::create(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
+        super::fault::point("atomic.before_rename");
         fs::rename(&tmp, path)?;
+        super::fault::point("atomic.after_rename");
         Ok(())
     })();
     if result.is_err() {
@@ -91,6 +98,7 @@ pub enum Miss {
 
 pub struct Cache {
     pub root: PathBuf,
+    tmp: PathBuf,
     _lock: Option<File>,
 }
 
@@ -131,20 +139,42 @@ impl Cache {
             Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
         }
         fs::write(root.join("lock.info"), format!("pid {}", std::process::id()))?;
-        let cache = Cache { root: root.to_path_buf(), _lock: Some(file) };
+        let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file) };
         // Files left in tmp/ by a killed run are incomplete: nobody else can be writing them.
         let _ = fs::remove_dir_all(cache.tmp_dir());
         fs::create_dir_all(cache.tmp_dir())?;
+        // SLURM workers write through worker-tmp/; a worker of a killed coordinator may
+        // still be writing there, so only files older than a day are removed.
+        if let Ok(files) = fs::read_dir(root.join(WORKER_TMP)) {
+            let day = std::time::Duration::from_secs(86_400);
+            for f in files.flatten() {
+                let old = f.metadata().and_then(|m| m.modified()).is_ok_and(|t| t.elapsed().is_ok_and(|a| a > day));
+                if old {
+                    let _ = fs::remove_file(f.path());
+                }
+            }
+        }
         Ok(cache)
     }
 
     /// Opens the cache for reading only, without the lock (status, dry runs).
     pub fn open_read_only(root: &Path) -> Cache {
-        Cache { root: root.to_path_buf(), _lock: None }
+        Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: None }
+    }
+
+    /// Opens the cache for a SLURM worker: no lock (the coordinator holds it), writes
+    /// through its own temporary directory with the same atomic protocol.
+    pub fn open_worker(root: &Path) -> Result<Cache> {
+        if !root.join("objects").is_dir() && !root.join("lock").exists() {
+            bail!("{} is not a repro cache (no lock file, no objects/)", root.display());
+        }
+        let tmp = root.join(WORKER_TMP);
+        fs::create_dir_all(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        Ok(Cache { root: root.to_path_buf(), tmp, _lock: None })
     }
 
     pub fn tmp_dir(&self) -> PathBuf {
-        self.root.join("tmp")
+        self.tmp.clone()
     }
 
     fn objects_dir(&self) -> PathBuf {
@@ -156,6 +186,9 @@ impl Cache {
     }
 
     pub fn get(&self, key: &str) -> Result<Entry, Miss> {
+        if !is_key(key) {
+            return Err(Miss::Corrupted(format!("`{key}` is not a task key")));
+        }
         let path = self.entry_path(key);
         let bytes = match fs::read(&path) {
             Ok(b) => b,
@@ -209,7 +242,14 @@ impl Cache {
     }
 }
 
-fn decode_entry(key: &str, bytes: &[u8]) -> Result<Entry> {
+/// Whether `s` has the form of a task key (64 lowercase hex digits).
+pub fn is_key(s: &str) -> bool {
+    s.len() == 64 && s.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+}
+
+/// Decodes and verifies an entry's bytes: header, content hash (checked before anything
+/// is deserialised), key and output hash.
+pub fn decode_entry(key: &str, bytes: &[u8]) -> Result<Entry> {
     let nl = bytes.iter().position(|&b| b == b'\n').context("truncated entry (no header line)")?;
     let header = std::str::from_utf8(&bytes[..nl]).context("header is not text")?;
     let Some(hash) = header.strip_prefix(&format!("{ENTRY_MAGIC} ")) else {

@@ -10,8 +10,9 @@
 use super::cache::{Cache, Entry, LockMode, ManifestPoint, Miss, StageManifest};
 use super::graph;
 use super::key::{stage_hash, task_key, Hash};
-use super::kind::{Inputs, Output, Registry};
+use super::kind::{DynKind, Inputs, Output, Registry};
 use super::report::{RunReport, Status, TaskRecord};
+use super::slurm::{SlurmOptions, TaskSpec};
 use super::spec::{Pipeline, Point, Stage};
 use super::table::{ColumnData, Table};
 use anyhow::{bail, Context, Result};
@@ -31,6 +32,17 @@ pub struct RunOptions {
     pub targets: Vec<String>,
     pub lock: LockMode,
     pub progress: bool,
+    pub executor: Executor,
+}
+
+/// Where tasks are computed.
+#[derive(Clone, Debug, Default)]
+pub enum Executor {
+    /// In this process, in parallel (rayon).
+    #[default]
+    Local,
+    /// As SLURM job arrays whose workers write into the shared cache.
+    Slurm(SlurmOptions),
 }
 
 impl Default for RunOptions {
@@ -45,6 +57,7 @@ impl Default for RunOptions {
             targets: Vec::new(),
             lock: LockMode::Wait,
             progress: true,
+            executor: Executor::Local,
         }
     }
 }
@@ -160,6 +173,7 @@ struct Job<'a> {
     key: Hash,
     reason: String,
     params: &'a serde_json::Value,
+    ran_on: Option<String>,
 }
 
 pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport> {
@@ -208,6 +222,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     let mut states: BTreeMap<usize, StageState> = BTreeMap::new();
     let mut records: Vec<TaskRecord> = Vec::new();
     let mut manifests: Vec<(usize, StageManifest)> = Vec::new();
+    let mut slurm: Option<super::slurm::Coordinator> = None;
 
     for w in 0..n_waves {
         let stages_here: Vec<usize> = order.iter().copied().filter(|&i| wave[i] == w).collect();
@@ -245,6 +260,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         reason: Some(reason.clone()),
                         wall_time_s: 0.0,
                         error: None,
+                        ran_on: None,
                     });
                 }
                 states.insert(si, state);
@@ -274,6 +290,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             reason: None,
                             wall_time_s: 0.0,
                             error: None,
+                            ran_on: None,
                         });
                         cached.push(Some((key, entry.output)));
                     }
@@ -286,7 +303,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             }
                             Miss::Absent => stale_reason(prev.as_ref(), stage, kind.version(), &inputs, pt, &key),
                         };
-                        jobs.push(Job { stage: si, point: pi, key, reason, params: &pt.params });
+                        jobs.push(Job { stage: si, point: pi, key, reason, params: &pt.params, ran_on: None });
                         cached.push(None);
                     }
                 }
@@ -308,6 +325,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     reason: Some(j.reason.clone()),
                     wall_time_s: 0.0,
                     error: None,
+                    ran_on: None,
                 });
             }
         } else if !jobs.is_empty() {
@@ -336,37 +354,58 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     (si, Inputs { tables })
                 })
                 .collect();
-            let outcomes: Vec<(usize, usize, Result<Output, String>, f64)> = pool.install(|| {
-                jobs.par_iter()
-                    .map(|j| {
-                        let stage = &p.stages[j.stage];
-                        let kind = registry.get(&stage.kind).unwrap();
-                        let t0 = Instant::now();
-                        let inputs = &input_tables[&j.stage];
-                        let res = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| kind.run(j.params, inputs)));
-                        let out = match res {
-                            Ok(Ok(out)) => out.table.check().map(|_| out).map_err(|e| format!("invalid output: {e:#}")),
-                            Ok(Err(e)) => Err(format!("{e:#}")),
-                            Err(panic) => Err(format!(
-                                "panicked: {}",
-                                panic
-                                    .downcast_ref::<String>()
-                                    .cloned()
-                                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                                    .unwrap_or_default()
-                            )),
-                        };
-                        let dt = t0.elapsed().as_secs_f64();
-                        let out = out.and_then(|o| {
-                            let entry = Entry::new(j.key.clone(), &stage.kind, kind.version(), j.params.clone(), o, dt);
-                            cache.put(&entry).map_err(|e| format!("writing the cache entry: {e:#}"))?;
-                            Ok(entry.output)
-                        });
-                        bars[&j.stage].inc(1);
-                        (j.stage, j.point, out, dt)
-                    })
-                    .collect()
-            });
+            let outcomes: Vec<(usize, usize, Result<Output, String>, f64)> = match &opts.executor {
+                Executor::Local => pool.install(|| {
+                    jobs.par_iter()
+                        .map(|j| {
+                            let stage = &p.stages[j.stage];
+                            let kind = registry.get(&stage.kind).unwrap();
+                            let (out, dt) = compute_task(kind, &j.key, j.params, &input_tables[&j.stage], &cache);
+                            bars[&j.stage].inc(1);
+                            (j.stage, j.point, out, dt)
+                        })
+                        .collect()
+                }),
+                Executor::Slurm(so) => {
+                    let coordinator = match &mut slurm {
+                        Some(c) => c,
+                        None => slurm.insert(super::slurm::Coordinator::new(&cache, so.clone())?),
+                    };
+                    let specs: Vec<TaskSpec> = jobs
+                        .iter()
+                        .map(|j| {
+                            let stage = &p.stages[j.stage];
+                            TaskSpec {
+                                key: j.key.clone(),
+                                kind: stage.kind.clone(),
+                                version: registry.get(&stage.kind).unwrap().version(),
+                                params: j.params.clone(),
+                                inputs: stage
+                                    .needs
+                                    .iter()
+                                    .map(|n| match &states[&index[n.as_str()]] {
+                                        StageState::Done { points, .. } => {
+                                            (n.clone(), points.iter().map(|(k, _)| k.clone()).collect())
+                                        }
+                                        _ => unreachable!(),
+                                    })
+                                    .collect(),
+                            }
+                        })
+                        .collect();
+                    let results = coordinator.run(&specs, &|i| bars[&jobs[i].stage].inc(1))?;
+                    jobs.iter_mut()
+                        .zip(results)
+                        .map(|(j, s)| {
+                            j.ran_on = s.placement;
+                            match s.result {
+                                Ok(entry) => (j.stage, j.point, Ok(entry.output), entry.wall_time_s),
+                                Err(e) => (j.stage, j.point, Err(e), 0.0),
+                            }
+                        })
+                        .collect()
+                }
+            };
             for bar in bars.values() {
                 bar.finish();
             }
@@ -381,6 +420,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     reason: Some(j.reason.clone()),
                     wall_time_s: dt,
                     error: out.as_ref().err().cloned(),
+                    ran_on: j.ran_on.clone(),
                 });
                 results.insert((si, pi), out.map(|o| (j.key.clone(), o)));
             }
@@ -463,6 +503,40 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         )?;
     }
     Ok(report)
+}
+
+/// Computes one task and stores its entry (atomically): the kind's run with panics caught,
+/// its table checked (no NaN or infinity). Returns the output or the error, and the wall
+/// time. Shared by the local executor and the SLURM worker.
+pub fn compute_task(
+    kind: &dyn DynKind,
+    key: &Hash,
+    params: &serde_json::Value,
+    inputs: &Inputs,
+    cache: &Cache,
+) -> (Result<Output, String>, f64) {
+    super::fault::point("task.start");
+    let t0 = Instant::now();
+    let res = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| kind.run(params, inputs)));
+    let out = match res {
+        Ok(Ok(out)) => out.table.check().map(|_| out).map_err(|e| format!("invalid output: {e:#}")),
+        Ok(Err(e)) => Err(format!("{e:#}")),
+        Err(panic) => Err(format!(
+            "panicked: {}",
+            panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default()
+        )),
+    };
+    let dt = t0.elapsed().as_secs_f64();
+    let out = out.and_then(|o| {
+        let entry = Entry::new(key.clone(), kind.name(), kind.version(), params.clone(), o, dt);
+        cache.put(&entry).map_err(|e| format!("writing the cache entry: {e:#}"))?;
+        Ok(entry.output)
+    });
+    (out, dt)
 }
 
 /// Removes temporary files a killed run left while publishing (`.repro-<pid>-<n>.tmp`).

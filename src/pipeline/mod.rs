@@ -4,10 +4,12 @@
 
 pub mod cache;
 pub mod executor;
+pub mod fault;
 pub mod graph;
 pub mod key;
 pub mod kind;
 pub mod report;
 pub mod schema;
+pub mod slurm;
 pub mod spec;
 pub mod table;

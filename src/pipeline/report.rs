@@ -33,6 +33,9 @@ pub struct TaskRecord {
     pub reason: Option<String>,
     pub wall_time_s: f64,
     pub error: Option<String>,
+    /// Where it was computed when not in this process (`SLURM job 12_3`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ran_on: Option<String>,
 }
 
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
@@ -107,7 +110,8 @@ impl RunReport {
                     let st = serde_json::to_value(t.status).unwrap().as_str().unwrap().to_string();
                     let key = t.key.as_deref().map(|k| &k[..12]).unwrap_or("?");
                     let why = t.reason.as_deref().unwrap_or("");
-                    s.push_str(&format!("      {label:<40} {key} {st:<9} {why}\n"));
+                    let on = t.ran_on.as_deref().map(|o| format!(" [{o}]")).unwrap_or_default();
+                    s.push_str(&format!("      {label:<40} {key} {st:<9} {why}{on}\n"));
                 }
             }
             for t in tasks.iter().filter(|t| t.status == Status::Failed) {
