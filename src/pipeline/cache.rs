@@ -121,7 +121,20 @@ impl Cache {
     pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
         fs::create_dir_all(root).with_context(|| format!("creating the cache directory {}", root.display()))?;
         let lock_path = root.join("lock");
-        let file = fs::OpenOptions::new().create(true).truncate(false).write(true).read(true).open(&lock_path)?;
+        let file = fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .read(true)
+            .open(&lock_path)
+            .with_context(|| {
+                format!(
+                    "the cache {} is not writable (opening {}); a run stores its results there: \
+                     give a writable --cache, or read this one with `repro status`",
+                    root.display(),
+                    lock_path.display()
+                )
+            })?;
         match file.try_lock() {
             Ok(()) => {}
             Err(fs::TryLockError::WouldBlock) => {
@@ -138,11 +151,12 @@ impl Cache {
             }
             Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
         }
-        fs::write(root.join("lock.info"), format!("pid {}", std::process::id()))?;
+        fs::write(root.join("lock.info"), format!("pid {}", std::process::id()))
+            .with_context(|| format!("writing {}", root.join("lock.info").display()))?;
         let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file) };
         // Files left in tmp/ by a killed run are incomplete: nobody else can be writing them.
         let _ = fs::remove_dir_all(cache.tmp_dir());
-        fs::create_dir_all(cache.tmp_dir())?;
+        fs::create_dir_all(cache.tmp_dir()).with_context(|| format!("creating {}", cache.tmp_dir().display()))?;
         // SLURM workers write through worker-tmp/; a worker of a killed coordinator may
         // still be writing there, so only files older than a day are removed.
         if let Ok(files) = fs::read_dir(root.join(WORKER_TMP)) {
