@@ -142,3 +142,16 @@ fn all_errors_are_reported_together() {
     );
     assert!(err.contains("p.yaml:3:11") && err.contains("p.yaml:6:13"), "{err}");
 }
+
+#[test]
+fn a_pipeline_cannot_name_files_outside_the_output_directories() {
+    // Stage names become published file names; paths, parent directories, hidden names
+    // and absolute paths are rejected where they are written.
+    for (i, name) in ["../escape", "/etc/passwd", "..", ".hidden", "a/b", "-rf", "x\\\\y"].iter().enumerate() {
+        let yaml = format!("stages:\n  - name: \"{name}\"\n    kind: util.sleep\n    params: {{x: 1}}\n");
+        let err = rejected(&format!("confine-{i}"), &yaml);
+        assert!(err.contains("p.yaml:2:11: error: a stage name must be"), "{name}: {err}");
+    }
+    let s = Scratch::new("confine-parent");
+    assert!(!s.dir.parent().unwrap().join("escape.parquet").exists());
+}

@@ -234,7 +234,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
     let name = match map.get_node("name") {
         Some(Node::Scalar(s)) if is_valid_name(s.as_str()) => s.as_str().to_string(),
         Some(n) => {
-            cx.err(cx.loc(n), "a stage name must be a non-empty string of letters, digits, `_`, `-` or `.`");
+            cx.err(cx.loc(n), "a stage name must be 1 to 100 letters, digits, `_`, `-` or `.`, not starting with `.` or `-` (it names the published files)");
             return None;
         }
         None => {
@@ -336,8 +336,14 @@ fn describe(e: &FieldError) -> String {
     }
 }
 
+/// Stage names become file names (`tables/<name>.parquet`, `figures/<name>.svg`): letters,
+/// digits, `_`, `-` and `.`, not starting with `.` or `-`, so a pipeline cannot write
+/// outside the output directories (no `/`, no `..`), nor hide or shadow files there.
 fn is_valid_name(s: &str) -> bool {
-    !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+    !s.is_empty()
+        && s.len() <= 100
+        && !s.starts_with(['.', '-'])
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
 }
 
 /// The known name closest to `name`, if it is close (edit distance at most 3, and less
@@ -492,7 +498,7 @@ fn expand_points<'a>(
     if !ok {
         return None;
     }
-    let total: usize = axes.iter().map(|(_, v)| v.len()).product();
+    let total = axes.iter().try_fold(1usize, |t, (_, v)| t.checked_mul(v.len())).unwrap_or(usize::MAX);
     if total > 1_000_000 {
         cx.err(
             mapping_location(cx.file, params),
