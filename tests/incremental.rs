@@ -168,3 +168,21 @@ fn dry_run_and_status_explain_without_writing() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("sweep") && text.contains("1 would run") && text.contains("new sweep point x=4"), "{text}");
 }
+
+#[test]
+fn a_sweep_of_thousands_of_tasks_plans_runs_and_reruns_as_a_no_op() {
+    // `cargo bench --bench scale` times this at 1e3..1e5 tasks (README); here the counts.
+    let s = Scratch::new("scale");
+    s.write("p.yaml", "stages:\n  - name: many\n    kind: util.sleep\n    params: {x: {linspace: [1, 5000, 5000]}}\n  - name: all\n    kind: util.sleep\n    needs: [many]\n    params: {x: 0}\n");
+    let (code, _, r) = s.run("p.yaml", &["--dry-run"]);
+    assert_eq!((code, r.count(Some("many"), "would_run"), r.count(Some("all"), "unknown")), (0, 5000, 1));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!((code, r.count(None, "computed")), (0, 5001), "{err}");
+    assert_eq!(common::column(&s.table("all"), "upstream_rows"), vec![5000.0]);
+    let manifest_dir = std::fs::read_dir(s.path("cache/manifests")).unwrap().next().unwrap().unwrap().path();
+    let modified = |f: &str| std::fs::metadata(manifest_dir.join(f)).unwrap().modified().unwrap();
+    let before = modified("many.json");
+    let (code, _, r) = s.run("p.yaml", &[]);
+    assert_eq!((code, r.count(None, "cached"), r.count(None, "computed")), (0, 5001, 0));
+    assert_eq!(modified("many.json"), before, "an unchanged manifest is not rewritten");
+}

@@ -228,8 +228,15 @@ impl Cache {
         serde_json::from_slice(&bytes).ok()
     }
 
+    /// Writes a stage's manifest unless it already holds the same (a no-op rerun of a
+    /// large sweep then writes nothing).
     pub fn write_manifest(&self, pipeline_id: &str, stage: &str, m: &StageManifest) -> Result<()> {
-        write_atomic(&self.manifest_path(pipeline_id, stage), &serde_json::to_vec_pretty(m)?, &self.tmp_dir())
+        let path = self.manifest_path(pipeline_id, stage);
+        let bytes = serde_json::to_vec_pretty(m)?;
+        if fs::read(&path).is_ok_and(|old| old == bytes) {
+            return Ok(());
+        }
+        write_atomic(&path, &bytes, &self.tmp_dir())
     }
 
     /// Every key that has an entry.
