@@ -189,3 +189,55 @@ fn a_restarted_coordinator_waits_for_queued_work_instead_of_resubmitting_it() {
         assert_eq!(table_values(&s, stage), table_values(&reference, stage));
     }
 }
+
+/// The worker alone (no cluster needed): it recomputes a task from its specification, and
+/// refuses a specification that does not hash to its key.
+#[test]
+fn the_worker_recomputes_a_task_from_its_spec_and_rejects_a_tampered_one() {
+    use repro::pipeline::cache::{Cache, LockMode};
+    use repro::pipeline::slurm::{failure_path, spec_path, TaskSpec};
+    let s = Scratch::new("worker-alone");
+    s.run_pipeline(&common::sleep_pipeline("[1, 2]", 0, "t"));
+    let r = common::Report(serde_json::from_slice(&s.read("report.json")).unwrap());
+    let key = r.task("after", "")["key"].as_str().unwrap().to_string();
+    let inputs: Vec<String> =
+        ["x=1", "x=2"].iter().map(|p| r.task("sweep", p)["key"].as_str().unwrap().to_string()).collect();
+    let cache = Cache::open(&s.path("cache"), LockMode::Wait).unwrap();
+    let entry = cache.get(&key).unwrap();
+    let spec = TaskSpec {
+        key: key.clone(),
+        kind: "util.sleep".into(),
+        version: entry.version,
+        params: entry.params.clone(),
+        inputs: vec![("sweep".into(), inputs)],
+    };
+    std::fs::create_dir_all(spec_path(&cache, &key).parent().unwrap()).unwrap();
+    std::fs::create_dir_all(failure_path(&cache, &key).parent().unwrap()).unwrap();
+    std::fs::write(spec_path(&cache, &key), serde_json::to_vec(&spec).unwrap()).unwrap();
+    s.write("list.txt", &format!("{key}\n"));
+    let entry_file = cache.entry_path(&key);
+    drop(cache);
+    std::fs::remove_file(&entry_file).unwrap();
+    let worker = |s: &Scratch| s.repro(&["worker", "--cache", "cache", "--list", "list.txt", "--index", "0"]);
+    let out = worker(&s);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let cache = Cache::open(&s.path("cache"), LockMode::Wait).unwrap();
+    assert_eq!(cache.get(&key).unwrap().output, entry.output, "the worker's result is the local one");
+    // Tampered parameters: the spec no longer hashes to the key; nothing is stored.
+    std::fs::remove_file(&entry_file).unwrap();
+    let mut bad = spec.clone();
+    bad.params["x"] = serde_json::json!(8);
+    std::fs::write(spec_path(&cache, &key), serde_json::to_vec(&bad).unwrap()).unwrap();
+    drop(cache);
+    let out = worker(&s);
+    assert_eq!(out.status.code(), Some(1));
+    let failure = String::from_utf8(s.read(&format!("cache/slurm/failed/{key}.json"))).unwrap();
+    assert!(failure.contains("does not hash to its key"), "{failure}");
+    assert!(!entry_file.exists(), "no result planted under the key");
+    // A list line that is not a key, and a missing line, are errors that say so.
+    s.write("list.txt", "../../etc/passwd\n");
+    let out = worker(&s);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("line 1 is not a task key"));
+    let out = s.repro(&["worker", "--cache", "cache", "--list", "list.txt", "--index", "5"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no line 5"));
+}

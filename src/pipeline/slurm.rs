@@ -176,8 +176,8 @@ impl<'a> Coordinator<'a> {
 
     /// This cache's jobs in the queue: (job id, comment = list file name).
     fn queued_jobs(&self) -> Result<Vec<(String, String)>> {
-        let out =
-            command_output(Command::new("squeue").args(["-h", "--name", &self.job_name, "-o", "%A %k"]))?;
+        let out = command_output(Command::new("squeue").args(["-h", "--name", &self.job_name, "-o", "%A %k"]))
+            .context("asking SLURM for this cache's jobs (the SLURM executor needs sbatch and squeue on PATH)")?;
         let mut jobs: Vec<(String, String)> = out
             .lines()
             .filter_map(|l| l.split_once(' ').map(|(a, b)| (a.trim().to_string(), b.trim().to_string())))
@@ -422,13 +422,23 @@ fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Resul
         ));
     }
     let mut tables = BTreeMap::new();
+    let mut input_hashes = BTreeMap::new();
     for (name, keys) in &spec.inputs {
         let mut t = super::table::Table::new();
+        let mut hashes = Vec::with_capacity(keys.len());
         for k in keys {
             let e = cache.get(k).map_err(|m| format!("input `{name}`: entry {k}: {m:?}"))?;
             t.append(&e.output.table).map_err(|e| format!("input `{name}`: {e:#}"))?;
+            hashes.push(e.output_hash);
         }
         tables.insert(name.clone(), t);
+        input_hashes.insert(name.clone(), super::key::stage_hash(&hashes));
+    }
+    // The specification is validated before it is used: its content must hash to the key
+    // the result will be stored under (a damaged or foreign file cannot plant a result).
+    let actual = super::key::task_key(&spec.kind, spec.version, &spec.params, &input_hashes);
+    if actual != key {
+        return Err(format!("its task specification does not hash to its key (hashes to {actual}): damaged or foreign"));
     }
     let inputs = super::kind::Inputs { tables: tables.iter().map(|(n, t)| (n.clone(), t)).collect() };
     let (out, wall) = super::executor::compute_task(kind, &spec.key, &spec.params, &inputs, cache);
