@@ -11,7 +11,10 @@ use std::process::Command;
 /// How many times a run of `yaml` reaches each fault point (from a clean cache).
 const POINTS: &[(&str, usize)] = &[("task.start", 5), ("atomic.before_rename", 13), ("atomic.after_rename", 13)];
 
-fn outputs(s: &Scratch) -> (Vec<(String, Vec<u8>)>, Vec<(String, Vec<u8>)>) {
+/// Every published file with its bytes (figures, then tables).
+type Snapshot = Vec<(String, Vec<u8>)>;
+
+fn outputs(s: &Scratch) -> (Snapshot, Snapshot) {
     (snapshot(&s.path("figures")), snapshot(&s.path("tables")))
 }
 

@@ -114,11 +114,8 @@ fn a_crashed_worker_is_resubmitted_and_a_failing_task_is_not() {
     assert_eq!(bad["status"], "failed");
     assert!(bad["error"].as_str().unwrap().contains("no such material"), "{bad}");
     let computed = r.count(Some("sweep"), "computed");
-    let retried: Vec<_> = r
-        .tasks()
-        .into_iter()
-        .filter(|t| t["ran_on"].as_str().is_some_and(|o| o.contains("attempt 2")))
-        .collect();
+    let retried: Vec<_> =
+        r.tasks().into_iter().filter(|t| t["ran_on"].as_str().is_some_and(|o| o.contains("attempt 2"))).collect();
     // The crash hit either a sweep task (resubmitted, then computed) or the failing task
     // (resubmitted, then failed as a task: reported with its own error, not retried again).
     assert_eq!(computed, 3, "{err}");

@@ -121,20 +121,17 @@ impl Cache {
     pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
         fs::create_dir_all(root).with_context(|| format!("creating the cache directory {}", root.display()))?;
         let lock_path = root.join("lock");
-        let file = fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .read(true)
-            .open(&lock_path)
-            .with_context(|| {
-                format!(
-                    "the cache {} is not writable (opening {}); a run stores its results there: \
+        let file =
+            fs::OpenOptions::new().create(true).truncate(false).write(true).read(true).open(&lock_path).with_context(
+                || {
+                    format!(
+                        "the cache {} is not writable (opening {}); a run stores its results there: \
                      give a writable --cache, or read this one with `repro status`",
-                    root.display(),
-                    lock_path.display()
-                )
-            })?;
+                        root.display(),
+                        lock_path.display()
+                    )
+                },
+            )?;
         match file.try_lock() {
             Ok(()) => {}
             Err(fs::TryLockError::WouldBlock) => {

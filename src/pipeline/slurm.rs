@@ -126,12 +126,7 @@ pub struct Coordinator<'a> {
 fn command_output(cmd: &mut Command) -> Result<String> {
     let out = cmd.output().with_context(|| format!("running {:?}", cmd.get_program()))?;
     if !out.status.success() {
-        bail!(
-            "{:?} failed ({}): {}",
-            cmd.get_program(),
-            out.status,
-            String::from_utf8_lossy(&out.stderr).trim()
-        );
+        bail!("{:?} failed ({}): {}", cmd.get_program(), out.status, String::from_utf8_lossy(&out.stderr).trim());
     }
     Ok(String::from_utf8_lossy(&out.stdout).to_string())
 }
@@ -438,7 +433,9 @@ fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Resul
     // the result will be stored under (a damaged or foreign file cannot plant a result).
     let actual = super::key::task_key(&spec.kind, spec.version, &spec.params, &input_hashes);
     if actual != key {
-        return Err(format!("its task specification does not hash to its key (hashes to {actual}): damaged or foreign"));
+        return Err(format!(
+            "its task specification does not hash to its key (hashes to {actual}): damaged or foreign"
+        ));
     }
     let inputs = super::kind::Inputs { tables: tables.iter().map(|(n, t)| (n.clone(), t)).collect() };
     let (out, wall) = super::executor::compute_task(kind, &spec.key, &spec.params, &inputs, cache);
