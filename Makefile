@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint bench-gamma-c
+.PHONY: figures test build schema clean-cache lint bench bench-gamma-c
 
 build:
 	$(CARGO) build
@@ -39,3 +39,18 @@ bench-gamma-c:
 	rm -rf target/bench-gamma-c
 	/usr/bin/time -f "gamma_c map: %e s wall, %U s user" ./target/release/repro run $(PIPELINE) --target gamma_c_map \
 		--cache target/bench-gamma-c/cache --figures target/bench-gamma-c/figures --tables target/bench-gamma-c/tables -q
+
+# Run time against error (pipelines/bench.yaml: figures/bench_bem.svg, bench_fem.svg and
+# tables/pareto_*.parquet) on an empty cache so that every wall time is measured, the full
+# stress grid (pipelines/stress.yaml: tables/stress_summary.parquet), then the
+# micro-benchmarks and the orchestrator's scale benchmark.
+bench:
+	$(CARGO) build --release
+	rm -rf target/bench-cache
+	/usr/bin/time -f "bench pipeline: %e s wall" ./target/release/repro run pipelines/bench.yaml --cache target/bench-cache -q
+	/usr/bin/time -f "stress grid: %e s wall" ./target/release/repro run pipelines/stress.yaml --cache target/bench-cache -q
+	./target/release/repro show tables/stress_summary.parquet
+	./target/release/repro show tables/pareto_bem.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
+	./target/release/repro show tables/pareto_fem.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
+	$(CARGO) bench --bench micro
+	$(CARGO) bench --bench scale

@@ -28,6 +28,12 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         // Materials beyond the SLS exercise the spectral code paths (same output for the SLS).
         ("theory.persson_brener", json!({"k": 0.01, "V_PB": 30, "s": 0.5, "per_decade": 2})),
         ("util.sleep", json!({"x": 1.25})),
+        ("bench.summary", json!({"stages": ["rolling", "bench_a"]})),
+        (
+            "bench.pareto",
+            json!({"candidates": ["bench_a", "bench_b"], "reference": "bench_ref", "match": ["x"], "value": "v",
+                   "tolerance": 0.005, "default": "bench_b"}),
+        ),
         (
             "bem.sweep",
             json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0": 1.0, "n": 80, "half_length": 5.0, "prony": [[0.5, 0.01], [0.5, 0.1]]}),
@@ -100,8 +106,16 @@ fn outputs_change_only_with_a_version_bump() {
         .with_f64("gamma_hi_over_Eh", vec![0.011, 0.022, 0.0055, 0.011])
         .with_f64("eq3_7_over_Eh", vec![0.03, 0.04, 0.0, 0.0])
         .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]));
+    // Two solver configurations and a reference for bench.pareto.
+    let timed = |v: [f64; 2], t: f64| {
+        Table::new().with_f64("x", vec![1.0, 2.0]).with_f64("v", v.to_vec()).with_f64("wall_time_s", vec![t, t])
+    };
+    let (bench_ref, bench_a, bench_b) = (timed([1.0, 2.0], 9.0), timed([1.1, 2.0], 1.0), timed([1.0, 2.002], 2.0));
     let inputs = Inputs {
         tables: BTreeMap::from([
+            ("bench_ref".to_string(), &bench_ref),
+            ("bench_a".to_string(), &bench_a),
+            ("bench_b".to_string(), &bench_b),
             ("input".to_string(), &input),
             ("rolling".to_string(), &rolling),
             ("gc".to_string(), &gc),

@@ -4,6 +4,7 @@
 pub mod bem;
 pub mod fem;
 pub mod fem_map;
+pub mod bench;
 pub mod figure;
 pub mod fit;
 pub mod material;
@@ -21,6 +22,7 @@ pub fn registry() -> Registry {
     bem::register(&mut r);
     fem::register(&mut r);
     fem_map::register(&mut r);
+    bench::register(&mut r);
     pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
