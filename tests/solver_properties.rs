@@ -1,0 +1,129 @@
+//! Property-based stress tests (proptest, bounded cases) over the admissible parameter
+//! space of each solver and theory: no NaN or infinity, a converged result or an explicit
+//! non-converged record, continuity in the parameters where the physics is continuous, and
+//! invariants (friction >= 0, load balance, symmetric pressure in the elastic limits,
+//! Maugis-Dugdale between DMT and JKR).
+
+use proptest::prelude::*;
+use repro::bem::solver::{solve, Mesh, Params};
+use repro::theory::{classical, persson, persson_brener};
+
+fn cfg(cases: u32) -> ProptestConfig {
+    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+}
+
+proptest! {
+    #![proptest_config(cfg(200))]
+
+    /// Persson's adhesionless friction (Appendix A) for k in [1e-4, 0.99] and twelve
+    /// decades of speed: finite, non-negative, bounded by its maximum over speed, and
+    /// continuous (a 0.1 % change of V0 changes mu* by well under 1 %).
+    #[test]
+    fn persson_friction_is_finite_positive_and_continuous(lk in -4.0f64..-0.0044, lv in -6.0f64..6.0) {
+        let (k, v0) = (10f64.powf(lk), 10f64.powf(lv));
+        let f = persson::mu_star(k, v0, 1e-6);
+        prop_assert!(f.mu_star.is_finite() && f.mu_star >= 0.0 && f.error_estimate.is_finite());
+        let g = persson::mu_star(k, v0 * 1.001, 1e-6);
+        prop_assert!((g.mu_star - f.mu_star).abs() <= 1e-2 * f.mu_star.max(1e-12) + 1e-9, "{} {}", f.mu_star, g.mu_star);
+    }
+
+    /// Persson-Brener (Eq. 5.13): f_T >= 0 for every k and speed, and monotone in speed.
+    #[test]
+    fn persson_brener_friction_is_finite_positive_and_monotone(lk in -4.0f64..-0.0044, lu in -6.0f64..6.0) {
+        let (k, u) = (10f64.powf(lk), 10f64.powf(lu));
+        let f = persson_brener::friction(u, k);
+        prop_assert!(f.is_finite() && f >= 0.0, "{f}");
+        prop_assert!(persson_brener::friction(u * 1.01, k) >= f * (1.0 - 1e-12));
+    }
+
+    /// Maugis-Dugdale (sphere): a solution for every contact radius and lambda; adhesion
+    /// lowers the load at a given radius (P < A^3, Hertz); at lambda -> 0 it is DMT.
+    /// (Not an invariant: P_MD >= P_DMT. At A = 0.3546, lambda = 0.0127 the MD load is
+    /// -1.95787, below DMT's -1.95542; proptest found it and a 40-digit mpmath solution of
+    /// the same equations confirms it.)
+    #[test]
+    fn maugis_dugdale_is_below_hertz_and_tends_to_dmt(la in -2.0f64..1.0, ll in -2.0f64..1.5) {
+        let (a, lambda) = (10f64.powf(la), 10f64.powf(ll));
+        let m = classical::maugis_dugdale(a, lambda).expect("a solution for every a, lambda > 0");
+        prop_assert!(m.load.is_finite() && m.approach.is_finite() && m.m >= 1.0);
+        prop_assert!(m.load < classical::hertz_load(a), "P_MD = {} at A = {a}, lambda = {lambda}", m.load);
+        // The adhesive force A^3 - P tends to DMT's 2 as lambda A -> 0.
+        let small = classical::maugis_dugdale(a, 1e-7).unwrap();
+        let force = classical::hertz_load(a) - small.load;
+        prop_assert!((force - 2.0).abs() < 1e-3, "adhesive force {force} at A = {a}, lambda = 1e-7 (DMT: 2)");
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(16))]
+
+    /// The BEM (Chapter 4) on a small mesh anywhere in lambda [0.05, 3], W [0.1, 5],
+    /// k [0.01, 0.9], V0 [1e-3, 1e3]: converged with the load carried equal to W and
+    /// mu* >= 0 (a sliding cylinder is resisted), or an explicit record; never NaN.
+    #[test]
+    fn bem_points_converge_balance_the_load_and_resist_sliding(
+        ll in -1.3f64..0.48, lw in -1.0f64..0.7, lk in -2.0f64..-0.046, lv in -3.0f64..3.0
+    ) {
+        let p = Params::sls(10f64.powf(ll), 10f64.powf(lw), 10f64.powf(lk), 10f64.powf(lv));
+        let s = solve(&p, Mesh { n: 240, half_length: 4.0 });
+        let f = s.friction();
+        prop_assert!(s.residual.is_finite() || !s.converged);
+        if s.converged {
+            prop_assert!(s.p.iter().chain(&s.h).all(|v| v.is_finite()));
+            prop_assert!(f.mu_star.is_finite() && f.mu_star >= -1e-9, "mu* = {}", f.mu_star);
+            prop_assert!((s.load() - p.w).abs() <= 1e-6 * p.w.abs(), "load {} vs W {}", s.load(), p.w);
+        } else {
+            prop_assert!(s.iterations > 0);
+        }
+    }
+
+    /// Elastic limits: at vanishing speed (relaxed) and with k close to 1 (nearly elastic
+    /// at every speed) the pressure is symmetric and the friction vanishes.
+    #[test]
+    fn bem_elastic_limits_are_symmetric(ll in -1.0f64..0.3, lw in -0.5f64..0.5, relaxed in any::<bool>()) {
+        let (k, v0) = if relaxed { (0.1, 1e-7) } else { (0.99999, 1.0) };
+        let p = Params::sls(10f64.powf(ll), 10f64.powf(lw), k, v0);
+        let s = solve(&p, Mesh { n: 240, half_length: 4.0 });
+        prop_assert!(s.converged);
+        let n = s.p.len();
+        let peak = s.p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let asym = (0..n).map(|i| (s.p[i] - s.p[n - 1 - i]).abs()).fold(0.0, f64::max);
+        prop_assert!(asym <= 1e-3 * peak, "asymmetry {asym} of peak {peak}");
+        prop_assert!(s.friction().mu_star.abs() <= 2e-3, "mu* = {}", s.friction().mu_star);
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(6))]
+
+    /// The shell (Chapter 3, adhesionless, frictionless) on a coarse mesh for h/R in
+    /// [0.02, 0.3] and E, nu anywhere admissible: every converged state is finite, the plate
+    /// force is compressive and balances the reaction at the clamped base (load balance),
+    /// and the force grows along the stable part of the path.
+    #[test]
+    fn shell_states_balance_the_load(h_over_r in 0.02f64..0.3, e in 0.1f64..100.0, nu in 0.0f64..0.49) {
+        use repro::fem::contact::Plate;
+        use repro::fem::indent::load_path;
+        use repro::fem::mesh::ShellMesh;
+        use repro::fem::system::{Base, Model};
+        let r = 15.0;
+        let model = Model::new(ShellMesh::hemisphere(r, h_over_r * r, 40, 2, 3.0), e, nu, Base::Clamped);
+        let plate = Plate::new(&model.mesh, e, 1000.0);
+        let path = load_path(&model, &plate, e, 0.1 * r, 8, 6);
+        prop_assert!(!path.is_empty());
+        let mut last_stable = 0.0;
+        for s in path.iter().filter(|s| s.converged) {
+            prop_assert!(s.u.iter().all(|v| v.is_finite()) && s.residual.is_finite());
+            let f = s.contact.force;
+            prop_assert!(f.is_finite() && f >= 0.0, "plate force {f}");
+            let (fint, _) = model.assemble(&s.u).unwrap();
+            let reaction: f64 = model.mesh.base.iter().map(|&a| fint[2 * a + 1]).sum();
+            prop_assert!((f - reaction).abs() <= 1e-6 * f.max(e * (h_over_r * r).powi(2)),
+                "plate {f} vs base reaction {reaction} at delta {}", s.delta);
+            if s.stable {
+                prop_assert!(f >= last_stable * (1.0 - 1e-9), "force fell on a stable step: {f} < {last_stable}");
+                last_stable = f;
+            }
+        }
+    }
+}
