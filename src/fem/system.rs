@@ -12,6 +12,7 @@ use super::element::{forces_and_tangent, lame};
 use super::mesh::ShellMesh;
 use anyhow::{anyhow, Result};
 use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 use rayon::prelude::*;
@@ -35,6 +36,19 @@ pub struct Model {
     pub lambda: f64,
     /// Constrained dofs (u = prescribed value there; zero for the supports).
     pub fixed: Vec<bool>,
+    /// The symbolic LU factorisation of the last tangent's sparsity pattern, reused while
+    /// the pattern stays the same (it does along a Newton solve: contact, friction and
+    /// adhesion add entries only inside the elements' blocks).
+    symbolic: std::sync::Mutex<Option<Pattern>>,
+    /// How many symbolic / numeric LU factorisations were made (for tests and profiles).
+    counts: [std::sync::atomic::AtomicUsize; 2],
+}
+
+/// A sparsity pattern (column pointers, row indices) and its symbolic LU factorisation.
+struct Pattern {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    lu: SymbolicLu<usize>,
 }
 
 impl Model {
@@ -50,7 +64,7 @@ impl Model {
                 fixed[2 * a] = true;
             }
         }
-        Model { mesh, mu, lambda, fixed }
+        Model { mesh, mu, lambda, fixed, symbolic: std::sync::Mutex::new(None), counts: Default::default() }
     }
 
     pub fn n_dofs(&self) -> usize {
@@ -135,7 +149,7 @@ impl Model {
     pub fn solve_many(&self, triplets: &[(usize, usize, f64)], rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
         let (index, m) = self.free_index();
         let k = self.free_matrix(triplets, &index, m)?;
-        let lu = k.sp_lu().map_err(|e| anyhow!("sparse LU: {e:?}"))?;
+        let lu = self.factorize(&k)?;
         let mut b = Mat::<f64>::zeros(m, rhs.len());
         for (c, col) in rhs.iter().enumerate() {
             for (i, &j) in index.iter().enumerate() {
@@ -148,6 +162,30 @@ impl Model {
         Ok((0..rhs.len())
             .map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect())
             .collect())
+    }
+
+    /// (symbolic, numeric) LU factorisations made so far.
+    pub fn factorizations(&self) -> (usize, usize) {
+        use std::sync::atomic::Ordering::Relaxed;
+        (self.counts[0].load(Relaxed), self.counts[1].load(Relaxed))
+    }
+
+    /// The LU factorisation of `k`, reusing the symbolic factorisation of the previous
+    /// matrix when the sparsity pattern is the same.
+    fn factorize(&self, k: &SparseColMat<usize, f64>) -> Result<Lu<usize, f64>> {
+        let sym = k.symbolic();
+        let mut cached = self.symbolic.lock().unwrap_or_else(|e| e.into_inner());
+        let same = cached.as_ref().is_some_and(|p| p.col_ptr == sym.col_ptr() && p.row_idx == sym.row_idx());
+        use std::sync::atomic::Ordering::Relaxed;
+        self.counts[1].fetch_add(1, Relaxed);
+        if !same {
+            self.counts[0].fetch_add(1, Relaxed);
+            let lu = SymbolicLu::try_new(sym).map_err(|e| anyhow!("sparse LU (symbolic): {e:?}"))?;
+            *cached = Some(Pattern { col_ptr: sym.col_ptr().to_vec(), row_idx: sym.row_idx().to_vec(), lu });
+        }
+        let symbolic = cached.as_ref().expect("set above").lu.clone();
+        drop(cached);
+        Lu::try_new_with_symbolic(symbolic, k.as_ref()).map_err(|e| anyhow!("sparse LU: {e:?}"))
     }
 
     /// Whether the free tangent is positive definite (its Cholesky factorisation exists):
@@ -208,5 +246,19 @@ mod tests {
         let (r1, r2) = (reissner_ratio(0.01, 120, 40.0), reissner_ratio(0.005, 200, 60.0));
         assert!((r1 - 1.0).abs() < 0.025 && (r2 - 1.0).abs() < 0.015, "{r1} {r2}");
         assert!((r2 - 1.0).abs() < 0.75 * (r1 - 1.0).abs(), "not converging to the thin limit: {r1} {r2}");
+    }
+
+    #[test]
+    fn the_symbolic_factorisation_is_reused_along_a_load_path() {
+        // Pressing the shell into contact (12 load steps, many Newton iterations, contact
+        // status changing) keeps one sparsity pattern: one symbolic factorisation in all.
+        let (e, r) = (1.3, 15.0);
+        let model = Model::new(ShellMesh::hemisphere(r, 1.0, 40, 2, 3.0), e, 0.45, Base::Clamped);
+        let plate = crate::fem::contact::Plate::new(&model.mesh, e, 1000.0).with_friction(0.5);
+        let path = crate::fem::indent::load_path(&model, &plate, e, 0.12 * r, 12, 4);
+        assert!(path.iter().all(|s| s.converged) && path.last().unwrap().contact.force > 0.0);
+        let (symbolic, numeric) = model.factorizations();
+        assert_eq!(symbolic, 1, "{numeric} numeric factorisations");
+        assert!(numeric > 24, "{numeric}");
     }
 }
