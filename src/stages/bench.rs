@@ -181,7 +181,8 @@ impl Kind for Summary {
     }
 
     fn run(p: &SummaryParams, inputs: &Inputs) -> Result<Output> {
-        let (mut points, mut converged, mut iterations, mut residual) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut points, mut converged, mut iterations, mut residual) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for name in &p.stages {
             let t = inputs.table(name)?;
             let n = t.n_rows();
@@ -230,10 +231,11 @@ mod tests {
         let coarse = stage(&[2.0, 1.0], &[21.0, 10.1], &[0.5, 0.5]); // 5 % (row order differs)
         let fine = stage(&[1.0, 2.0], &[10.0, 20.02], &[2.0, 2.0]); // 0.1 %
         let wasteful = stage(&[1.0, 2.0], &[10.0, 20.2], &[3.0, 3.0]); // 1 %, slower than fine
-        let tables: BTreeMap<String, &Table> = [("ref", &reference), ("coarse", &coarse), ("fine", &fine), ("waste", &wasteful)]
-            .into_iter()
-            .map(|(n, t)| (n.to_string(), t))
-            .collect();
+        let tables: BTreeMap<String, &Table> =
+            [("ref", &reference), ("coarse", &coarse), ("fine", &fine), ("waste", &wasteful)]
+                .into_iter()
+                .map(|(n, t)| (n.to_string(), t))
+                .collect();
         let p = ParetoParams {
             candidates: vec!["coarse".into(), "fine".into(), "waste".into()],
             reference: "ref".into(),

@@ -2,9 +2,9 @@
 //! Each kind binds one physics function to typed, validated parameters and a table.
 
 pub mod bem;
+pub mod bench;
 pub mod fem;
 pub mod fem_map;
-pub mod bench;
 pub mod figure;
 pub mod fit;
 pub mod material;
