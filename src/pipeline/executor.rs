@@ -356,7 +356,11 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 .collect();
             let outcomes: Vec<(usize, usize, Result<Output, String>, f64)> = match &opts.executor {
                 Executor::Local => pool.install(|| {
+                    // One task per split: tasks differ in cost by orders of magnitude, and rayon's
+                    // default splitting can leave several expensive tasks queued behind one
+                    // another on one thread while the other idles.
                     jobs.par_iter()
+                        .with_max_len(1)
                         .map(|j| {
                             let stage = &p.stages[j.stage];
                             let kind = registry.get(&stage.kind).unwrap();
