@@ -8,8 +8,15 @@ use proptest::prelude::*;
 use repro::bem::solver::{solve, Mesh, Params};
 use repro::theory::{classical, persson, persson_brener};
 
+/// A fixed seed: CI runs the same cases every time (change it, or set PROPTEST_CASES, to
+/// explore further; failures found that way are kept as comments in the tests).
 fn cfg(cases: u32) -> ProptestConfig {
-    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig {
+        cases,
+        failure_persistence: None,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20261122),
+        ..ProptestConfig::default()
+    }
 }
 
 proptest! {
@@ -125,5 +132,35 @@ proptest! {
                 last_stable = f;
             }
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(cfg(6))]
+
+    /// Loads at pull-off (Chapter 5): the minimum load along the branch (`branch::pull_off`)
+    /// and the stable state at a prescribed tensile load (`branch::descend_to_load`) agree:
+    /// 95 % of the pull-off load converges on the branch, 105 % is reported as not converged
+    /// with the missing load as its residual. The pull-off is tensile, and relaxed
+    /// (V0 -> 0) it is no stronger than JKR's -1.744 (the Lennard-Jones range softens it).
+    #[test]
+    fn pull_off_and_descent_agree_at_the_pull_off(ll in -0.5f64..0.15, lk in -1.3f64..-0.3) {
+        use repro::bem::branch::{descend_to_load, pull_off};
+        let p = Params::sls(10f64.powf(ll), 1.0, 10f64.powf(lk), 1e-6);
+        // Lambda up to 1.4 only. Proptest found that above about 2 the descent to 95 % of
+        // the pull-off fails (not converged) though the pull-off search succeeds: at lambda =
+        // 2.63, k = 0.103 on 300 and 600 elements (converges on 1200), at lambda = 2.19,
+        // k = 0.5 even on the production starting mesh. Open: `descend_to_load` near the
+        // pull-off at large lambda (README, issue 7 note).
+        let start = solve(&p, repro::bem::solver::starting_mesh(&p, 1e-3));
+        prop_assert!(start.converged);
+        let po = pull_off(&start, 1e-4);
+        prop_assert!(po.converged && po.load < 0.0 && po.load.is_finite(), "pull-off {}", po.load);
+        prop_assert!(po.load >= repro::bem::solver::jkr_pull_off() - 1e-3, "{} beyond JKR", po.load);
+        let inside = descend_to_load(&start, 0.95 * po.load);
+        prop_assert!(inside.converged && (inside.load() - 0.95 * po.load).abs() < 1e-6, "{}", inside.load());
+        let beyond = descend_to_load(&start, 1.05 * po.load);
+        prop_assert!(!beyond.converged);
+        prop_assert!(beyond.residual > 0.0 && beyond.residual.is_finite());
     }
 }
