@@ -7,11 +7,10 @@
 //! Points: `atomic.before_rename` and `atomic.after_rename` (every atomic write: cache
 //! entries, manifests, published tables and figures, run reports) and `task.start` (a task
 //! about to be computed, locally or by a SLURM worker). Without the variable a point costs
-//! one relaxed atomic load.
+//! one atomic load (the initialised `OnceLock`).
 
-use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, OnceLock};
+use std::sync::OnceLock;
 
 struct Plan {
     point: String,
@@ -35,23 +34,13 @@ fn plan() -> Option<&'static Plan> {
 
 /// Marks that execution reached `point`; aborts if the crash plan says so.
 pub fn point(name: &str) {
-    static ENABLED: AtomicU64 = AtomicU64::new(2); // 2: unknown, 1: on, 0: off
-    match ENABLED.load(Ordering::Relaxed) {
-        0 => return,
-        2 => ENABLED.store(plan().is_some() as u64, Ordering::Relaxed),
-        _ => {}
-    }
     let Some(plan) = plan() else { return };
     if plan.point != name {
         return;
     }
-    static COUNTS: Mutex<BTreeMap<String, u64>> = Mutex::new(BTreeMap::new());
-    let n = {
-        let mut counts = COUNTS.lock().unwrap_or_else(|e| e.into_inner());
-        let c = counts.entry(name.to_string()).or_default();
-        *c += 1;
-        *c
-    };
+    // Only the planned point is counted.
+    static COUNT: AtomicU64 = AtomicU64::new(0);
+    let n = COUNT.fetch_add(1, Ordering::Relaxed) + 1;
     if n == plan.at {
         if let Some(mark) = &plan.mark {
             if std::fs::OpenOptions::new().write(true).create_new(true).open(mark).is_err() {

@@ -236,7 +236,8 @@ impl<'a> Coordinator<'a> {
     /// `done(i)` is called as task i completes (progress).
     pub fn run(&mut self, tasks: &[TaskSpec], done: &(dyn Fn(usize) + Sync)) -> Result<Vec<Settled>> {
         let mut results: Vec<Option<Result<Entry, String>>> = vec![None; tasks.len()];
-        let mut last_place: BTreeMap<usize, String> = BTreeMap::new();
+        // Where each settled task last ran (only tasks that ran on SLURM).
+        let mut ran_on: BTreeMap<usize, String> = BTreeMap::new();
         let mut place: BTreeMap<usize, Placement> = BTreeMap::new();
         let mut fresh: Vec<usize> = Vec::new();
         for (i, t) in tasks.iter().enumerate() {
@@ -278,7 +279,6 @@ impl<'a> Coordinator<'a> {
             let mut progressed = false;
             let mut crashed: Vec<(usize, Placement)> = Vec::new();
             for (&i, p) in &place {
-                last_place.insert(i, p.describe());
                 let key = &tasks[i].key;
                 if let Ok(e) = self.cache.get(key) {
                     results[i] = Some(Ok(e));
@@ -290,6 +290,7 @@ impl<'a> Coordinator<'a> {
                 } else {
                     continue;
                 }
+                ran_on.insert(i, p.describe());
                 done(i);
                 progressed = true;
             }
@@ -316,6 +317,7 @@ impl<'a> Coordinator<'a> {
                         err.display(),
                         tail(&err, 20)
                     )));
+                    ran_on.insert(i, p.describe());
                     done(i);
                 }
             }
@@ -327,7 +329,7 @@ impl<'a> Coordinator<'a> {
         Ok(results
             .into_iter()
             .enumerate()
-            .map(|(i, r)| Settled { result: r.expect("every task settled"), placement: last_place.remove(&i) })
+            .map(|(i, r)| Settled { result: r.expect("every task settled"), placement: ran_on.remove(&i) })
             .collect())
     }
 
