@@ -244,13 +244,13 @@ impl<'a> Coordinator<'a> {
             if !is_key(&t.key) {
                 bail!("task key `{}` is malformed", t.key);
             }
-            write_atomic(&spec_path(self.cache, &t.key), &serde_json::to_vec(t)?, &self.cache.tmp_dir())?;
             if let Ok(e) = self.cache.get(&t.key) {
                 results[i] = Some(Ok(e));
                 done(i);
             } else if let Some(p) = self.adopted.remove(&t.key) {
-                place.insert(i, p);
+                place.insert(i, p); // its specification was written before it was submitted
             } else {
+                write_atomic(&spec_path(self.cache, &t.key), &serde_json::to_vec(t)?, &self.cache.tmp_dir())?;
                 fresh.push(i);
             }
         }
