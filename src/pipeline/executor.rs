@@ -164,16 +164,24 @@ fn make_bar(multi: &indicatif::MultiProgress, stage: &str, n: usize) -> indicati
     bar
 }
 
-/// Per stage of a wave: its inputs' hashes, and per point its cached (key, output) if any.
-type Plan = (BTreeMap<String, Hash>, Vec<Option<(Hash, Output)>>);
-
-struct Job<'a> {
+struct Job {
     stage: usize,
     point: usize,
     key: Hash,
     reason: String,
-    params: &'a serde_json::Value,
+    params: serde_json::Value,
+    label: String,
     ran_on: Option<String>,
+}
+
+/// A stage of the current wave while its rounds run: its points so far (an adaptive stage
+/// adds some after each round) and, per point, its output once known.
+struct StagePlan {
+    prev: Option<StageManifest>,
+    inputs: BTreeMap<String, Hash>,
+    points: Vec<Point>,
+    outs: Vec<Option<(Hash, Output)>>,
+    failed: bool,
 }
 
 pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport> {
@@ -226,12 +234,9 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
 
     for w in 0..n_waves {
         let stages_here: Vec<usize> = order.iter().copied().filter(|&i| wave[i] == w).collect();
-        let mut jobs: Vec<Job> = Vec::new();
-        // Per stage: the inputs' hashes, and for each point its cached output if any.
-        let mut plans: BTreeMap<usize, Plan> = BTreeMap::new();
+        let mut plans: BTreeMap<usize, StagePlan> = BTreeMap::new();
         for &si in &stages_here {
             let stage = &p.stages[si];
-            let kind = registry.get(&stage.kind).expect("validated kinds");
             let need_states: Vec<(&String, &StageState)> =
                 stage.needs.iter().map(|n| (n, &states[&index[n.as_str()]])).collect();
             let blocked: Vec<&str> = need_states
@@ -251,17 +256,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     (Status::Unknown, StageState::Unknown, "upstream stages would run first".to_string())
                 };
                 for pt in &stage.points {
-                    records.push(TaskRecord {
-                        stage: stage.name.clone(),
-                        kind: stage.kind.clone(),
-                        point: pt.label.clone(),
-                        key: None,
-                        status,
-                        reason: Some(reason.clone()),
-                        wall_time_s: 0.0,
-                        error: None,
-                        ran_on: None,
-                    });
+                    records.push(TaskRecord::new(stage, &pt.label, None, status, Some(reason.clone())));
                 }
                 states.insert(si, state);
                 continue;
@@ -273,185 +268,236 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     _ => unreachable!(),
                 })
                 .collect();
-            let prev = cache.read_manifest(&pid, &stage.name);
-            let forced = opts.force.contains(&stage.name);
-            let mut cached = Vec::with_capacity(stage.points.len());
-            for (pi, pt) in stage.points.iter().enumerate() {
-                let key = task_key(&stage.kind, kind.version(), &pt.params, &inputs);
-                let lookup = if forced { Err(Miss::Absent) } else { cache.get(&key) };
-                match lookup {
-                    Ok(entry) => {
-                        records.push(TaskRecord {
-                            stage: stage.name.clone(),
-                            kind: stage.kind.clone(),
-                            point: pt.label.clone(),
-                            key: Some(key.clone()),
-                            status: Status::Cached,
-                            reason: None,
-                            wall_time_s: 0.0,
-                            error: None,
-                            ran_on: None,
-                        });
-                        cached.push(Some((key, entry.output)));
-                    }
-                    Err(miss) => {
-                        let reason = match miss {
-                            _ if forced => "forced (--force)".to_string(),
-                            Miss::Corrupted(why) => {
-                                eprintln!("repro: warning: cache entry {key} of stage `{}` is corrupted ({why}); recomputing it", stage.name);
-                                format!("corrupted cache entry ({why})")
-                            }
-                            Miss::Absent => stale_reason(prev.as_ref(), stage, kind.version(), &inputs, pt, &key),
-                        };
-                        jobs.push(Job { stage: si, point: pi, key, reason, params: &pt.params, ran_on: None });
-                        cached.push(None);
-                    }
-                }
-            }
-            plans.insert(si, (inputs, cached));
+            plans.insert(
+                si,
+                StagePlan {
+                    prev: cache.read_manifest(&pid, &stage.name),
+                    inputs,
+                    points: stage.points.clone(),
+                    outs: Vec::new(),
+                    failed: false,
+                },
+            );
         }
+        // The inputs' tables, for computing.
+        let input_tables: BTreeMap<usize, Inputs> = plans
+            .keys()
+            .map(|&si| {
+                let tables = p.stages[si]
+                    .needs
+                    .iter()
+                    .map(|n| match &states[&index[n.as_str()]] {
+                        StageState::Done { table, .. } => (n.clone(), table),
+                        _ => unreachable!(),
+                    })
+                    .collect();
+                (si, Inputs { tables })
+            })
+            .collect();
 
-        // Compute (or, in a dry run, list) the jobs of this wave.
-        let mut results: BTreeMap<(usize, usize), Result<(Hash, Output), String>> = BTreeMap::new();
-        if opts.dry_run {
-            for j in &jobs {
-                let stage = &p.stages[j.stage];
-                records.push(TaskRecord {
-                    stage: stage.name.clone(),
-                    kind: stage.kind.clone(),
-                    point: stage.points[j.point].label.clone(),
-                    key: Some(j.key.clone()),
-                    status: Status::WouldRun,
-                    reason: Some(j.reason.clone()),
-                    wall_time_s: 0.0,
-                    error: None,
-                    ran_on: None,
-                });
-            }
-        } else if !jobs.is_empty() {
-            let mut bars: BTreeMap<usize, indicatif::ProgressBar> = BTreeMap::new();
-            for j in &jobs {
-                bars.entry(j.stage).or_insert_with(|| {
-                    let n = jobs.iter().filter(|k| k.stage == j.stage).count();
-                    make_bar(&multi, &p.stages[j.stage].name, n)
-                });
-            }
-            let input_tables: BTreeMap<usize, Inputs> = stages_here
-                .iter()
-                .filter(|si| plans.contains_key(si))
-                .map(|&si| {
-                    let tables = p.stages[si]
-                        .needs
-                        .iter()
-                        .map(|n| {
-                            let j = index[n.as_str()];
-                            match &states[&j] {
-                                StageState::Done { table, .. } => (n.clone(), table),
-                                _ => unreachable!(),
-                            }
-                        })
-                        .collect();
-                    (si, Inputs { tables })
-                })
-                .collect();
-            let outcomes: Vec<(usize, usize, Result<Output, String>, f64)> = match &opts.executor {
-                Executor::Local => pool.install(|| {
-                    // One task per split: tasks differ in cost by orders of magnitude, and rayon's
-                    // default splitting can leave several expensive tasks queued behind one
-                    // another on one thread while the other idles.
-                    jobs.par_iter()
-                        .with_max_len(1)
-                        .map(|j| {
-                            let stage = &p.stages[j.stage];
-                            let kind = registry.get(&stage.kind).unwrap();
-                            let (out, dt) = compute_task(kind, &j.key, j.params, &input_tables[&j.stage], &cache);
-                            bars[&j.stage].inc(1);
-                            (j.stage, j.point, out, dt)
-                        })
-                        .collect()
-                }),
-                Executor::Slurm(so) => {
-                    let coordinator = match &mut slurm {
-                        Some(c) => c,
-                        None => slurm.insert(super::slurm::Coordinator::new(&cache, so.clone())?),
-                    };
-                    let specs: Vec<TaskSpec> = jobs
-                        .iter()
-                        .map(|j| {
-                            let stage = &p.stages[j.stage];
-                            TaskSpec {
-                                key: j.key.clone(),
-                                kind: stage.kind.clone(),
-                                version: registry.get(&stage.kind).unwrap().version(),
-                                params: j.params.clone(),
-                                inputs: stage
-                                    .needs
-                                    .iter()
-                                    .map(|n| match &states[&index[n.as_str()]] {
-                                        StageState::Done { points, .. } => {
-                                            (n.clone(), points.iter().map(|(k, _)| k.clone()).collect())
-                                        }
-                                        _ => unreachable!(),
-                                    })
-                                    .collect(),
-                            }
-                        })
-                        .collect();
-                    let results = coordinator.run(&specs, &|i| bars[&jobs[i].stage].inc(1))?;
-                    jobs.iter_mut()
-                        .zip(results)
-                        .map(|(j, s)| {
-                            j.ran_on = s.placement;
-                            match s.result {
-                                Ok(entry) => (j.stage, j.point, Ok(entry.output), entry.wall_time_s),
-                                Err(e) => (j.stage, j.point, Err(e), 0.0),
-                            }
-                        })
-                        .collect()
-                }
-            };
-            for bar in bars.values() {
-                bar.finish();
-            }
-            for (j, (si, pi, out, dt)) in jobs.iter().zip(outcomes) {
+        // Rounds: the stages' points, then the points adaptive stages add after each round.
+        for round in 0.. {
+            let mut jobs: Vec<Job> = Vec::new();
+            for (&si, plan) in plans.iter_mut() {
                 let stage = &p.stages[si];
-                records.push(TaskRecord {
-                    stage: stage.name.clone(),
-                    kind: stage.kind.clone(),
-                    point: stage.points[pi].label.clone(),
-                    key: Some(j.key.clone()),
-                    status: if out.is_ok() { Status::Computed } else { Status::Failed },
-                    reason: Some(j.reason.clone()),
-                    wall_time_s: dt,
-                    error: out.as_ref().err().cloned(),
-                    ran_on: j.ran_on.clone(),
-                });
-                results.insert((si, pi), out.map(|o| (j.key.clone(), o)));
+                let kind = registry.get(&stage.kind).expect("validated kinds");
+                let forced = opts.force.contains(&stage.name);
+                for pi in plan.outs.len()..plan.points.len() {
+                    let pt = &plan.points[pi];
+                    let key = task_key(&stage.kind, kind.version(), &pt.params, &plan.inputs);
+                    let lookup = if forced { Err(Miss::Absent) } else { cache.get(&key) };
+                    match lookup {
+                        Ok(entry) => {
+                            records.push(TaskRecord::new(stage, &pt.label, Some(key.clone()), Status::Cached, None));
+                            plan.outs.push(Some((key, entry.output)));
+                        }
+                        Err(miss) => {
+                            let mut reason = match miss {
+                                _ if forced => "forced (--force)".to_string(),
+                                Miss::Corrupted(why) => {
+                                    eprintln!("repro: warning: cache entry {key} of stage `{}` is corrupted ({why}); recomputing it", stage.name);
+                                    format!("corrupted cache entry ({why})")
+                                }
+                                Miss::Absent => {
+                                    stale_reason(plan.prev.as_ref(), stage, kind.version(), &plan.inputs, pt, &key)
+                                }
+                            };
+                            if round > 0 {
+                                reason = format!("adaptive refinement, round {round} ({reason})");
+                            }
+                            jobs.push(Job {
+                                stage: si,
+                                point: pi,
+                                key,
+                                reason,
+                                params: pt.params.clone(),
+                                label: pt.label.clone(),
+                                ran_on: None,
+                            });
+                            plan.outs.push(None);
+                        }
+                    }
+                }
+            }
+            if opts.dry_run {
+                for j in &jobs {
+                    let stage = &p.stages[j.stage];
+                    records.push(TaskRecord::new(
+                        stage,
+                        &j.label,
+                        Some(j.key.clone()),
+                        Status::WouldRun,
+                        Some(j.reason.clone()),
+                    ));
+                }
+            } else if !jobs.is_empty() {
+                let mut bars: BTreeMap<usize, indicatif::ProgressBar> = BTreeMap::new();
+                for j in &jobs {
+                    bars.entry(j.stage).or_insert_with(|| {
+                        let n = jobs.iter().filter(|k| k.stage == j.stage).count();
+                        let name = &p.stages[j.stage].name;
+                        let label = if round == 0 { name.clone() } else { format!("{name} (round {round})") };
+                        make_bar(&multi, &label, n)
+                    });
+                }
+                let outcomes: Vec<(Result<Output, String>, f64)> = match &opts.executor {
+                    Executor::Local => pool.install(|| {
+                        // One task per split: tasks differ in cost by orders of magnitude, and rayon's
+                        // default splitting can leave several expensive tasks queued behind one
+                        // another on one thread while the other idles.
+                        jobs.par_iter()
+                            .with_max_len(1)
+                            .map(|j| {
+                                let kind = registry.get(&p.stages[j.stage].kind).unwrap();
+                                let (out, dt) = compute_task(kind, &j.key, &j.params, &input_tables[&j.stage], &cache);
+                                bars[&j.stage].inc(1);
+                                (out, dt)
+                            })
+                            .collect()
+                    }),
+                    Executor::Slurm(so) => {
+                        let coordinator = match &mut slurm {
+                            Some(c) => c,
+                            None => slurm.insert(super::slurm::Coordinator::new(&cache, so.clone())?),
+                        };
+                        let specs: Vec<TaskSpec> = jobs
+                            .iter()
+                            .map(|j| {
+                                let stage = &p.stages[j.stage];
+                                TaskSpec {
+                                    key: j.key.clone(),
+                                    kind: stage.kind.clone(),
+                                    version: registry.get(&stage.kind).unwrap().version(),
+                                    params: j.params.clone(),
+                                    inputs: stage
+                                        .needs
+                                        .iter()
+                                        .map(|n| match &states[&index[n.as_str()]] {
+                                            StageState::Done { points, .. } => {
+                                                (n.clone(), points.iter().map(|(k, _)| k.clone()).collect())
+                                            }
+                                            _ => unreachable!(),
+                                        })
+                                        .collect(),
+                                }
+                            })
+                            .collect();
+                        let results = coordinator.run(&specs, &|i| bars[&jobs[i].stage].inc(1))?;
+                        jobs.iter_mut()
+                            .zip(results)
+                            .map(|(j, s)| {
+                                j.ran_on = s.placement;
+                                match s.result {
+                                    Ok(entry) => (Ok(entry.output), entry.wall_time_s),
+                                    Err(e) => (Err(e), 0.0),
+                                }
+                            })
+                            .collect()
+                    }
+                };
+                for bar in bars.values() {
+                    bar.finish();
+                }
+                for (j, (out, dt)) in jobs.iter().zip(outcomes) {
+                    let stage = &p.stages[j.stage];
+                    let mut r = TaskRecord::new(
+                        stage,
+                        &j.label,
+                        Some(j.key.clone()),
+                        if out.is_ok() { Status::Computed } else { Status::Failed },
+                        Some(j.reason.clone()),
+                    );
+                    r.wall_time_s = dt;
+                    r.error = out.as_ref().err().cloned();
+                    r.ran_on = j.ran_on.clone();
+                    records.push(r);
+                    let plan = plans.get_mut(&j.stage).unwrap();
+                    match out {
+                        Ok(o) => plan.outs[j.point] = Some((j.key.clone(), o)),
+                        Err(_) => plan.failed = true,
+                    }
+                }
+            }
+            // Adaptive stages whose points are all known choose their next points.
+            let mut grew = false;
+            for (&si, plan) in plans.iter_mut() {
+                let stage = &p.stages[si];
+                let Some(axis) = &stage.adaptive else { continue };
+                if plan.failed {
+                    continue;
+                }
+                if plan.outs.iter().any(Option::is_none) {
+                    // Dry run: what follows depends on the points that would run.
+                    records.push(TaskRecord::new(
+                        stage,
+                        &format!("(adaptive refinement of {} after round {round})", axis.param),
+                        None,
+                        Status::Unknown,
+                        Some("further points depend on the results of the points that would run".into()),
+                    ));
+                    continue;
+                }
+                let outputs: Vec<&Output> = plan.outs.iter().map(|o| &o.as_ref().unwrap().1).collect();
+                match super::adaptive::next_points(axis, registry.get(&stage.kind).unwrap(), &plan.points, &outputs) {
+                    Ok(new) => {
+                        grew |= !new.is_empty();
+                        plan.points.extend(new);
+                    }
+                    Err(e) => {
+                        let mut r = TaskRecord::new(
+                            stage,
+                            &format!("(adaptive refinement of {} after round {round})", axis.param),
+                            None,
+                            Status::Failed,
+                            None,
+                        );
+                        r.error = Some(e);
+                        records.push(r);
+                        plan.failed = true;
+                    }
+                }
+            }
+            if !grew {
+                break;
             }
         }
+        drop(input_tables);
 
         // Assemble each stage of the wave.
-        for (si, (inputs, cached)) in plans {
+        for (si, plan) in plans {
             let stage = &p.stages[si];
             let kind = registry.get(&stage.kind).unwrap();
-            let mut points = Vec::with_capacity(cached.len());
-            let mut state_ok = true;
-            let mut unknown = false;
-            for (pi, c) in cached.into_iter().enumerate() {
-                match c {
-                    Some(kv) => points.push(kv),
-                    None => match results.remove(&(si, pi)) {
-                        Some(Ok(kv)) => points.push(kv),
-                        Some(Err(_)) => state_ok = false,
-                        None => unknown = true, // dry run
-                    },
-                }
-            }
-            let state = if unknown {
-                StageState::Unknown
-            } else if !state_ok {
+            let state = if plan.failed {
                 StageState::Failed
+            } else if plan.outs.iter().any(Option::is_none) {
+                StageState::Unknown // dry run
             } else {
+                let order: Vec<usize> = match &stage.adaptive {
+                    Some(axis) => super::adaptive::publication_order(axis, &plan.points),
+                    None => (0..plan.points.len()).collect(),
+                };
+                let mut outs: Vec<Option<(Hash, Output)>> = plan.outs;
+                let points: Vec<(Hash, Output)> = order.iter().map(|&i| outs[i].take().unwrap()).collect();
                 let hashes: Vec<Hash> = points.iter().map(|(_, o)| super::cache::output_hash(o)).collect();
                 let mut table = Table::new();
                 for (_, o) in &points {
@@ -464,14 +510,13 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     StageManifest {
                         kind: stage.kind.clone(),
                         version: kind.version(),
-                        inputs,
-                        points: stage
-                            .points
+                        inputs: plan.inputs,
+                        points: order
                             .iter()
                             .zip(&points)
-                            .map(|(pt, (k, _))| ManifestPoint {
-                                label: pt.label.clone(),
-                                params: pt.params.clone(),
+                            .map(|(&i, (k, _))| ManifestPoint {
+                                label: plan.points[i].label.clone(),
+                                params: plan.points[i].params.clone(),
                                 key: k.clone(),
                             })
                             .collect(),

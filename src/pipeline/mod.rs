@@ -2,6 +2,7 @@
 //! and the run report. It knows nothing of physics: stage kinds plug in through
 //! [`kind::Kind`].
 
+pub mod adaptive;
 pub mod cache;
 pub mod executor;
 pub mod fault;

@@ -38,6 +38,29 @@ pub struct TaskRecord {
     pub ran_on: Option<String>,
 }
 
+impl TaskRecord {
+    /// A record of a task of `stage` (no wall time, error or placement yet).
+    pub fn new(
+        stage: &super::spec::Stage,
+        point: &str,
+        key: Option<String>,
+        status: Status,
+        reason: Option<String>,
+    ) -> Self {
+        TaskRecord {
+            stage: stage.name.clone(),
+            kind: stage.kind.clone(),
+            point: point.to_string(),
+            key,
+            status,
+            reason,
+            wall_time_s: 0.0,
+            error: None,
+            ran_on: None,
+        }
+    }
+}
+
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct RunReport {
     pub pipeline: String,

@@ -32,8 +32,25 @@ fn sweep_of(item: Value) -> Value {
             {"type": "array", "items": item, "minItems": 1, "description": "a sweep over these values"},
             {"type": "object", "properties": {"logspace": triple.clone()}, "required": ["logspace"], "additionalProperties": false,
              "description": "n values from 10^from to 10^to: [from, to, n]"},
-            {"type": "object", "properties": {"linspace": triple}, "required": ["linspace"], "additionalProperties": false,
-             "description": "n values from `from` to `to`: [from, to, n]"}
+            {"type": "object", "properties": {"linspace": triple.clone()}, "required": ["linspace"], "additionalProperties": false,
+             "description": "n values from `from` to `to`: [from, to, n]"},
+            {"type": "object", "additionalProperties": false, "required": ["adaptive"],
+             "description": "sampled where the curve of output columns bends or peaks (see README)",
+             "properties": {"adaptive": {
+                "type": "object", "additionalProperties": false, "required": ["y", "tol"],
+                "oneOf": [{"required": ["logspace"]}, {"required": ["linspace"]}],
+                "properties": {
+                    "logspace": triple.clone(),
+                    "linspace": triple,
+                    "y": {"anyOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}, "minItems": 1}],
+                          "description": "the output column(s) to resolve, one row per point"},
+                    "tol": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1,
+                            "description": "largest deviation from the chord, as a fraction of the curve's span"},
+                    "log_y": {"type": "boolean"},
+                    "levels": {"type": "integer", "minimum": 0, "maximum": 20,
+                               "description": "halvings of the initial spacing at most (default 3)"},
+                    "max_points": {"type": "integer", "minimum": 3}
+                }}}}
         ]
     })
 }

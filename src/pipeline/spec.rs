@@ -8,11 +8,14 @@
 //!     params:                  # checked against the kind's parameter type
 //!       inv_k: [1.1, 2, 10]    # a sweep: a list,
 //!       V0: {logspace: [-3, 3, 61]}   # or 10^from..10^to in n points, or {linspace: [from, to, n]}
+//!       # or refined where the curve of an output column bends or peaks (`adaptive`):
+//!       # V0: {adaptive: {logspace: [-3, 3, 13], y: mu_star, tol: 0.01}}
 //!     needs: [other_stage]     # stages whose tables this stage reads
 //! ```
 //! A stage with sweeps expands into one point per element of the Cartesian product.
 //! Nothing is run when any error is found; all errors found are reported together.
 
+use super::adaptive::AdaptiveAxis;
 use super::kind::{FieldError, Registry};
 use marked_yaml::types::{MarkedMappingNode, Node};
 use serde_json::{Map, Number, Value};
@@ -78,6 +81,8 @@ pub struct Stage {
     pub kind: String,
     pub needs: Vec<String>,
     pub points: Vec<Point>,
+    /// The parameter whose points are refined after each round (`adaptive`), if any.
+    pub adaptive: Option<AdaptiveAxis>,
     pub location: Location,
 }
 
@@ -292,7 +297,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             return None;
         }
     };
-    let points = expand_points(cx, &name, params_map, kind.sweepable())?;
+    let (points, adaptive) = expand_points(cx, &name, params_map, kind.sweepable())?;
     let mut checked = Vec::with_capacity(points.len());
     let mut referenced: BTreeSet<(String, String)> = BTreeSet::new();
     for p in points {
@@ -323,7 +328,14 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         }
     }
     Some(ParsedStage {
-        stage: Stage { name, kind: kind_name, needs, points: checked, location: mapping_location(cx.file, map) },
+        stage: Stage {
+            name,
+            kind: kind_name,
+            needs,
+            points: checked,
+            adaptive,
+            location: mapping_location(cx.file, map),
+        },
         need_locations,
     })
 }
@@ -401,24 +413,112 @@ struct RawPoint<'a> {
     swept_nodes: BTreeMap<String, &'a Node>,
 }
 
-/// The values of one swept parameter, with the node each value comes from.
-fn sweep_values<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> Option<Vec<(f64, &'a Node)>> {
-    let number = |cx: &mut Ctx, n: &Node, what: &str| -> Option<f64> {
-        match to_json(n).as_f64() {
-            Some(x) => Some(x),
-            None => {
-                cx.err(cx.loc(n), format!("stage `{stage}`: parameter `{param}`: {what} must be a number"));
+/// The values of a swept parameter (with the node each comes from) and, for an adaptive
+/// one, its refinement.
+type Axis<'a> = (Vec<(f64, &'a Node)>, Option<AdaptiveAxis>);
+
+/// The initial values of a swept parameter and, for `{adaptive: ...}`, its refinement.
+fn sweep_values<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> Option<Axis<'a>> {
+    if let Node::Mapping(map) = node {
+        if let Some(body) = map.get_node("adaptive") {
+            if map.len() != 1 {
+                cx.err(
+                    cx.loc(node),
+                    format!("stage `{stage}`: parameter `{param}`: `adaptive` stands alone in its mapping"),
+                );
+                return None;
+            }
+            return adaptive_axis(cx, stage, param, body);
+        }
+    }
+    sweep_values_plain(cx, stage, param, node).map(|v| (v, None))
+}
+
+/// `{adaptive: {logspace|linspace: [from, to, n], y: col | [cols], tol: x, log_y, levels, max_points}}`.
+fn adaptive_axis<'a>(cx: &mut Ctx, stage: &str, param: &str, body: &'a Node) -> Option<Axis<'a>> {
+    let what = format!("stage `{stage}`: parameter `{param}`: adaptive");
+    let Node::Mapping(m) = body else {
+        cx.err(cx.loc(body), format!("{what}: expected a mapping with `logspace` or `linspace`, `y` and `tol`"));
+        return None;
+    };
+    check_keys(cx, m, &["logspace", "linspace", "y", "tol", "log_y", "levels", "max_points"], "an adaptive sweep");
+    let grids: Vec<&str> = ["logspace", "linspace"].into_iter().filter(|g| m.get_node(g).is_some()).collect();
+    if grids.len() != 1 {
+        cx.err(cx.loc(body), format!("{what}: give exactly one of `logspace` and `linspace` (the initial grid)"));
+        return None;
+    }
+    let log = grids[0] == "logspace";
+    let grid_node = m.get_node(grids[0]).unwrap();
+    let (from, to, n) = grid(cx, stage, param, grids[0], grid_node)?;
+    let values: Vec<(f64, &Node)> = (0..n).map(|i| (spaced(log, from, to, n, i), grid_node)).collect();
+    if n < 3 {
+        cx.err(cx.loc(grid_node), format!("{what}: the initial grid needs at least 3 points"));
+        return None;
+    }
+    let y = match m.get_node("y").map(to_json) {
+        Some(Value::String(s)) => vec![s],
+        Some(Value::Array(a)) if !a.is_empty() && a.iter().all(Value::is_string) => {
+            a.into_iter().map(|v| v.as_str().unwrap().to_string()).collect()
+        }
+        _ => {
+            let at = m.get_node("y").map_or_else(|| cx.loc(body), |n| cx.loc(n));
+            cx.err(at, format!("{what}: `y` must name the output column (or list of columns) to resolve"));
+            return None;
+        }
+    };
+    let tol = match m.get_node("tol").map(|n| (to_json(n).as_f64(), n)) {
+        Some((Some(t), _)) if t > 0.0 && t < 1.0 => t,
+        other => {
+            let at = other.map_or_else(|| cx.loc(body), |(_, n)| cx.loc(n));
+            cx.err(
+                at,
+                format!(
+                    "{what}: `tol` must be a number in (0, 1): the allowed deviation as a fraction of the curve's span"
+                ),
+            );
+            return None;
+        }
+    };
+    let log_y = match m.get_node("log_y").map(|n| (to_json(n), n)) {
+        None => false,
+        Some((Value::Bool(b), _)) => b,
+        Some((_, n)) => {
+            cx.err(cx.loc(n), format!("{what}: `log_y` must be true or false"));
+            return None;
+        }
+    };
+    let int = |cx: &mut Ctx, key: &str, default: u64, max: u64| -> Option<u64> {
+        match m.get_node(key).map(|n| (to_json(n).as_u64(), n)) {
+            None => Some(default),
+            Some((Some(v), _)) if v <= max => Some(v),
+            Some((_, n)) => {
+                cx.err(cx.loc(n), format!("{what}: `{key}` must be an integer from 0 to {max}"));
                 None
             }
         }
     };
+    let levels = int(cx, "levels", 3, 20)? as u32;
+    let max_points = int(cx, "max_points", ((n as u64 - 1) << levels) + 1, 100_000)? as usize;
+    if max_points < n {
+        cx.err(
+            cx.loc(m.get_node("max_points").unwrap()),
+            format!("{what}: `max_points` is below the {n} initial points"),
+        );
+        return None;
+    }
+    let axis = AdaptiveAxis { param: param.to_string(), log, from, to, initial: n, y, log_y, tol, levels, max_points };
+    Some((values, Some(axis)))
+}
+
+fn sweep_values_plain<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> Option<Vec<(f64, &'a Node)>> {
     match node {
         Node::Sequence(seq) => {
             if seq.is_empty() {
                 cx.err(cx.loc(node), format!("stage `{stage}`: parameter `{param}`: an empty sweep"));
                 return None;
             }
-            let vals: Vec<_> = seq.iter().map(|n| number(cx, n, "each sweep value").map(|x| (x, n))).collect();
+            let vals: Vec<_> =
+                seq.iter().map(|n| number(cx, stage, param, n, "each sweep value").map(|x| (x, n))).collect();
             vals.into_iter().collect()
         }
         Node::Mapping(map) if map.len() == 1 => {
@@ -427,40 +527,56 @@ fn sweep_values<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node) -> O
             if form != "logspace" && form != "linspace" {
                 cx.err(
                     span_location(cx.file, key.span()),
-                    format!("stage `{stage}`: parameter `{param}`: unknown sweep `{form}` (expected a list, `logspace` or `linspace`)"),
+                    format!("stage `{stage}`: parameter `{param}`: unknown sweep `{form}` (expected a list, `logspace`, `linspace` or `adaptive`)"),
                 );
                 return None;
             }
-            let items = match body {
-                Node::Sequence(s) if s.len() == 3 => s,
-                _ => {
-                    cx.err(cx.loc(body), format!("stage `{stage}`: parameter `{param}`: `{form}` takes [from, to, n]"));
-                    return None;
-                }
-            };
-            let a = number(cx, &items[0], "`from`")?;
-            let b = number(cx, &items[1], "`to`")?;
-            let n = match to_json(&items[2]).as_u64() {
-                Some(n) if (1..=100_000).contains(&n) => n as usize,
-                _ => {
-                    cx.err(
-                        cx.loc(&items[2]),
-                        format!("stage `{stage}`: parameter `{param}`: `n` must be an integer from 1 to 100000"),
-                    );
-                    return None;
-                }
-            };
-            if form == "logspace" && (a.abs() > 300.0 || b.abs() > 300.0) {
-                cx.err(
-                    cx.loc(body),
-                    format!("stage `{stage}`: parameter `{param}`: logspace takes decimal exponents ([-3, 3, 61] is 1e-3..1e3), got {a} and {b}"),
-                );
-                return None;
-            }
+            let (a, b, n) = grid(cx, stage, param, form, body)?;
             Some((0..n).map(|i| (spaced(form == "logspace", a, b, n, i), node)).collect())
         }
-        _ => number(cx, node, "a swept value").map(|x| vec![(x, node)]),
+        _ => number(cx, stage, param, node, "a swept value").map(|x| vec![(x, node)]),
     }
+}
+
+fn number(cx: &mut Ctx, stage: &str, param: &str, n: &Node, what: &str) -> Option<f64> {
+    match to_json(n).as_f64() {
+        Some(x) => Some(x),
+        None => {
+            cx.err(cx.loc(n), format!("stage `{stage}`: parameter `{param}`: {what} must be a number"));
+            None
+        }
+    }
+}
+
+/// `[from, to, n]` of a `logspace` or `linspace`.
+fn grid(cx: &mut Ctx, stage: &str, param: &str, form: &str, body: &Node) -> Option<(f64, f64, usize)> {
+    let items = match body {
+        Node::Sequence(s) if s.len() == 3 => s,
+        _ => {
+            cx.err(cx.loc(body), format!("stage `{stage}`: parameter `{param}`: `{form}` takes [from, to, n]"));
+            return None;
+        }
+    };
+    let a = number(cx, stage, param, &items[0], "`from`")?;
+    let b = number(cx, stage, param, &items[1], "`to`")?;
+    let n = match to_json(&items[2]).as_u64() {
+        Some(n) if (1..=100_000).contains(&n) => n as usize,
+        _ => {
+            cx.err(
+                cx.loc(&items[2]),
+                format!("stage `{stage}`: parameter `{param}`: `n` must be an integer from 1 to 100000"),
+            );
+            return None;
+        }
+    };
+    if form == "logspace" && (a.abs() > 300.0 || b.abs() > 300.0) {
+        cx.err(
+            cx.loc(body),
+            format!("stage `{stage}`: parameter `{param}`: logspace takes decimal exponents ([-3, 3, 61] is 1e-3..1e3), got {a} and {b}"),
+        );
+        return None;
+    }
+    Some((a, b, n))
 }
 
 /// The i-th of n points from a to b, linear or in decimal exponents, rounded to 12
@@ -477,18 +593,34 @@ fn expand_points<'a>(
     stage: &str,
     params: &'a MarkedMappingNode,
     sweepable: &[&str],
-) -> Option<Vec<RawPoint<'a>>> {
+) -> Option<(Vec<RawPoint<'a>>, Option<AdaptiveAxis>)> {
     let mut fixed = Map::new();
     let mut axes: Vec<(String, Vec<(f64, &'a Node)>)> = Vec::new();
+    let mut adaptive: Option<AdaptiveAxis> = None;
     let mut ok = true;
     for (key, node) in params.iter() {
         let name = key.as_str().to_string();
         if sweepable.contains(&name.as_str()) {
             match sweep_values(cx, stage, &name, node) {
-                Some(v) if v.len() == 1 && !matches!(node, Node::Sequence(_)) => {
+                Some((v, None)) if v.len() == 1 && !matches!(node, Node::Sequence(_)) => {
                     fixed.insert(name, json_number(v[0].0));
                 }
-                Some(v) => axes.push((name, v)),
+                Some((v, a)) => {
+                    if let Some(a) = a {
+                        if let Some(prev) = &adaptive {
+                            cx.err(
+                                cx.loc(node),
+                                format!(
+                                    "stage `{stage}`: parameter `{name}`: only one parameter may be adaptive (`{}` is)",
+                                    prev.param
+                                ),
+                            );
+                            ok = false;
+                        }
+                        adaptive = Some(a);
+                    }
+                    axes.push((name, v));
+                }
                 None => ok = false,
             }
         } else {
@@ -526,7 +658,7 @@ fn expand_points<'a>(
         }
         points.push(RawPoint { value: Value::Object(value), label: labels.join(" "), swept_nodes });
     }
-    Some(points)
+    Some((points, adaptive))
 }
 
 fn json_number(x: f64) -> Value {
