@@ -29,6 +29,9 @@ fn the_peak_is_resolved_with_fewer_points_than_a_uniform_grid() {
     let (v0, mu) = (column(&df, "V0"), column(&df, "mu_star"));
     // Published along the axis.
     assert!(v0.windows(2).all(|w| w[0] < w[1]), "{v0:?}");
+    // Every task table carries its task's wall time (added by the executor where the kind
+    // reports none, as theory.persson does not).
+    assert!(column(&df, "wall_time_s").iter().all(|t| t.is_finite() && *t >= 0.0));
     let n = v0.len();
     assert_eq!(r.count(Some("mu"), "computed"), n);
     // Refined (more than the 7 initial points), but far fewer than the uniform grid at the
@@ -76,10 +79,15 @@ fn reruns_and_dry_runs_reproduce_the_same_points() {
     assert_eq!(s.read("tables/mu.parquet"), first);
     let (_, _, r) = s.run("p.yaml", &["--dry-run"]);
     assert_eq!((r.count(Some("mu"), "would_run"), r.count(Some("mu"), "unknown")), (0, 0));
-    // From an empty cache again: the same points, the same bytes (modulo nothing).
+    // From an empty cache again: the same points with the same values (and keys).
+    let before = s.table("mu");
     std::fs::remove_dir_all(s.path("cache")).unwrap();
     s.run("p.yaml", &[]);
-    assert_eq!(s.read("tables/mu.parquet"), first);
+    let after = s.table("mu");
+    for c in ["V0", "mu_star"] {
+        assert_eq!(column(&before, c), column(&after, c), "{c}");
+    }
+    assert!(before.column("task_key").unwrap().equals(after.column("task_key").unwrap()));
     // A looser tolerance keeps a subset of the points: all cached.
     s.write("p.yaml", &pipeline("{adaptive: {logspace: [-3, 3, 7], y: mu_star, tol: 0.05}}"));
     let (_, _, r) = s.run("p.yaml", &[]);

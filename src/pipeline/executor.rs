@@ -68,7 +68,13 @@ impl Default for RunOptions {
 pub struct UsageError(pub String);
 
 enum StageState {
-    Done { hash: Hash, table: Table, points: Vec<(Hash, Output)> },
+    /// Per point: its key and output, and the wall time of its task (when it was computed).
+    Done {
+        hash: Hash,
+        table: Table,
+        points: Vec<(Hash, Output)>,
+        times: Vec<f64>,
+    },
     Failed,
     Skipped,
     Unknown,
@@ -127,14 +133,18 @@ fn stale_reason(
     }
 }
 
-/// Adds the per-row task key and the code version to a stage's table, for publishing.
-fn provenance_table(points: &[(Hash, Output)], code_version: &str) -> Result<Table> {
+/// Adds the per-row task key and the code version to a stage's table, for publishing, and
+/// the task's wall time as `wall_time_s` where the kind does not report its own (not to a
+/// figure's data: its numbers are those of the stages it draws).
+fn provenance_table(points: &[(Hash, Output)], times: &[f64], code_version: &str, figure: bool) -> Result<Table> {
     let mut table = Table::new();
-    for (key, out) in points {
+    for ((key, out), &dt) in points.iter().zip(times) {
         let n = out.table.n_rows();
-        let t = out
-            .table
-            .clone()
+        let mut t = out.table.clone();
+        if !figure && t.column("wall_time_s").is_none() {
+            t = t.with_f64("wall_time_s", vec![dt; n]);
+        }
+        let t = t
             .with("task_key", ColumnData::Str(vec![key.clone(); n]))
             .with("code_version", ColumnData::Str(vec![code_version.to_string(); n]));
         table.append(&t)?;
@@ -181,6 +191,8 @@ struct StagePlan {
     inputs: BTreeMap<String, Hash>,
     points: Vec<Point>,
     outs: Vec<Option<(Hash, Output)>>,
+    /// Per point: the wall time of its task.
+    times: Vec<f64>,
     failed: bool,
 }
 
@@ -275,6 +287,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     inputs,
                     points: stage.points.clone(),
                     outs: Vec::new(),
+                    times: Vec::new(),
                     failed: false,
                 },
             );
@@ -310,6 +323,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         Ok(entry) => {
                             records.push(TaskRecord::new(stage, &pt.label, Some(key.clone()), Status::Cached, None));
                             plan.outs.push(Some((key, entry.output)));
+                            plan.times.push(entry.wall_time_s);
                         }
                         Err(miss) => {
                             let mut reason = match miss {
@@ -335,6 +349,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                 ran_on: None,
                             });
                             plan.outs.push(None);
+                            plan.times.push(0.0);
                         }
                     }
                 }
@@ -433,7 +448,10 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     records.push(r);
                     let plan = plans.get_mut(&j.stage).unwrap();
                     match out {
-                        Ok(o) => plan.outs[j.point] = Some((j.key.clone(), o)),
+                        Ok(o) => {
+                            plan.outs[j.point] = Some((j.key.clone(), o));
+                            plan.times[j.point] = dt;
+                        }
                         Err(_) => plan.failed = true,
                     }
                 }
@@ -498,6 +516,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 };
                 let mut outs: Vec<Option<(Hash, Output)>> = plan.outs;
                 let points: Vec<(Hash, Output)> = order.iter().map(|&i| outs[i].take().unwrap()).collect();
+                let times: Vec<f64> = order.iter().map(|&i| plan.times[i]).collect();
                 let hashes: Vec<Hash> = points.iter().map(|(_, o)| super::cache::output_hash(o)).collect();
                 let mut table = Table::new();
                 for (_, o) in &points {
@@ -522,7 +541,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             .collect(),
                     },
                 ));
-                StageState::Done { hash: stage_hash(&hashes), table, points }
+                StageState::Done { hash: stage_hash(&hashes), table, points, times }
             };
             states.insert(si, state);
         }
@@ -537,8 +556,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
             cache.write_manifest(&pid, &p.stages[*si].name, m)?;
         }
         for &si in &order {
-            if let Some(StageState::Done { points, .. }) = states.get(&si) {
-                report.published.extend(publish_stage(p, &p.stages[si], registry, points, opts)?);
+            if let Some(StageState::Done { points, times, .. }) = states.get(&si) {
+                report.published.extend(publish_stage(p, &p.stages[si], registry, points, times, opts)?);
             }
         }
     }
@@ -608,11 +627,13 @@ fn publish_stage(
     stage: &Stage,
     registry: &Registry,
     points: &[(Hash, Output)],
+    times: &[f64],
     opts: &RunOptions,
 ) -> Result<Vec<String>> {
     let kind = registry.get(&stage.kind).unwrap();
     let code_version = format!("{}@v{}", stage.kind, kind.version());
-    let table = provenance_table(points, &code_version)?;
+    let is_figure = points.iter().any(|(_, o)| !o.artifacts.is_empty());
+    let table = provenance_table(points, times, &code_version, is_figure)?;
     let keys: Vec<&str> = points.iter().map(|(k, _)| k.as_str()).collect();
     let metadata = vec![
         ("repro.pipeline".to_string(), p.file.clone()),
@@ -620,7 +641,6 @@ fn publish_stage(
         ("repro.code_version".to_string(), code_version),
         ("repro.task_keys".to_string(), keys.join(",")),
     ];
-    let is_figure = points.iter().any(|(_, o)| !o.artifacts.is_empty());
     if is_figure && points.len() != 1 {
         bail!("figure stage `{}` has {} points; a figure stage takes no sweep", stage.name, points.len());
     }
