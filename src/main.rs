@@ -325,9 +325,13 @@ fn main() -> ExitCode {
                 .collect();
             let line =
                 |r: &[String]| r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ");
-            println!("{}", line(&names));
-            for r in &cells {
-                println!("{}", line(r));
+            // A reader that stops early (`| head`) closes the pipe: stop quietly.
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            for r in std::iter::once(&names).chain(&cells) {
+                if writeln!(out, "{}", line(r)).is_err() {
+                    break;
+                }
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -46,3 +46,24 @@ fn a_missing_pipeline_file_is_invalid_input() {
     assert!(err.contains("nope.yaml") && err.contains("cannot read the pipeline file"), "{err}");
     assert!(!s.exists("cache"));
 }
+
+#[test]
+fn show_stops_quietly_when_its_reader_closes_the_pipe() {
+    let s = Scratch::new("show-pipe");
+    s.run_pipeline(
+        "stages:\n  - name: mu\n    kind: theory.persson\n    params: {inv_k: 10, V0: {logspace: [-3, 3, 3000]}}\n",
+    );
+    // Far more than a pipe holds (3000 rows with their 64-character task keys).
+    let mut child = s
+        .command(&["show", "tables/mu.parquet"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    std::io::Read::read_exact(child.stdout.as_mut().unwrap(), &mut first).unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !err.contains("panicked"), "{:?}: {err}", out.status);
+}
