@@ -186,3 +186,26 @@ fn a_sweep_of_thousands_of_tasks_plans_runs_and_reruns_as_a_no_op() {
     assert_eq!((code, r.count(None, "cached"), r.count(None, "computed")), (0, 5001, 0));
     assert_eq!(modified("many.json"), before, "an unchanged manifest is not rewritten");
 }
+
+#[test]
+fn stages_sharing_points_compute_each_shared_task_once() {
+    let s = Scratch::new("twins");
+    s.write(
+        "p.yaml",
+        "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: [1, 2, 3]}\n  - name: b\n    kind: util.sleep\n    params: {x: [2, 3, 4]}\n",
+    );
+    let (_, _, r) = s.run("p.yaml", &["--dry-run"]);
+    assert_eq!((r.count(None, "would_run"), r.count(None, "cached")), (4, 2));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    // x = 2 and 3 are one task each, shared by both stages: 4 computations, not 6.
+    assert_eq!(r.count(None, "computed"), 4);
+    let twin = r.task("b", "x=2");
+    assert_eq!(twin["status"], "cached");
+    assert!(twin["reason"].as_str().unwrap().contains("the same task as stage `a` point x=2"), "{twin}");
+    assert_eq!(s.table("b").height(), 3);
+    // Both tables show the one computation's wall time, so a rerun rewrites neither.
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(None, "computed"), 0);
+    assert_eq!(r.0["published"].as_array().unwrap().len(), 0, "{:?}", r.0["published"]);
+}

@@ -311,6 +311,10 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         // Rounds: the stages' points, then the points adaptive stages add after each round.
         for round in 0.. {
             let mut jobs: Vec<Job> = Vec::new();
+            // Tasks of this round whose key another stage's task already has (two stages
+            // sharing points): computed once, with the index of the job that computes them.
+            let mut twins: Vec<(Job, usize)> = Vec::new();
+            let mut job_of_key: BTreeMap<Hash, usize> = BTreeMap::new();
             for (&si, plan) in plans.iter_mut() {
                 let stage = &p.stages[si];
                 let kind = registry.get(&stage.kind).expect("validated kinds");
@@ -339,7 +343,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             if round > 0 {
                                 reason = format!("adaptive refinement, round {round} ({reason})");
                             }
-                            jobs.push(Job {
+                            let job = Job {
                                 stage: si,
                                 point: pi,
                                 key,
@@ -347,13 +351,23 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                 params: pt.params.clone(),
                                 label: pt.label.clone(),
                                 ran_on: None,
-                            });
+                            };
+                            match job_of_key.get(&job.key) {
+                                Some(&first) => twins.push((job, first)),
+                                None => {
+                                    job_of_key.insert(job.key.clone(), jobs.len());
+                                    jobs.push(job);
+                                }
+                            }
                             plan.outs.push(None);
                             plan.times.push(0.0);
                         }
                     }
                 }
             }
+            let twin_reason = |first: &Job| {
+                format!("the same task as stage `{}` point {} (computed once)", p.stages[first.stage].name, first.label)
+            };
             if opts.dry_run {
                 for j in &jobs {
                     let stage = &p.stages[j.stage];
@@ -363,6 +377,16 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         Some(j.key.clone()),
                         Status::WouldRun,
                         Some(j.reason.clone()),
+                    ));
+                }
+                for (j, first) in &twins {
+                    let reason = twin_reason(&jobs[*first]);
+                    records.push(TaskRecord::new(
+                        &p.stages[j.stage],
+                        &j.label,
+                        Some(j.key.clone()),
+                        Status::Cached,
+                        Some(reason),
                     ));
                 }
             } else if !jobs.is_empty() {
@@ -432,6 +456,28 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 };
                 for bar in bars.values() {
                     bar.finish();
+                }
+                // A twin takes its job's outcome.
+                let twin_outcomes: Vec<(Result<Output, String>, f64)> =
+                    twins.iter().map(|(_, first)| outcomes[*first].clone()).collect();
+                for ((j, first), (out, dt)) in twins.iter().zip(twin_outcomes) {
+                    let mut r = TaskRecord::new(
+                        &p.stages[j.stage],
+                        &j.label,
+                        Some(j.key.clone()),
+                        if out.is_ok() { Status::Cached } else { Status::Failed },
+                        Some(twin_reason(&jobs[*first])),
+                    );
+                    r.error = out.as_ref().err().cloned();
+                    records.push(r);
+                    let plan = plans.get_mut(&j.stage).unwrap();
+                    match out {
+                        Ok(o) => {
+                            plan.outs[j.point] = Some((j.key.clone(), o));
+                            plan.times[j.point] = dt;
+                        }
+                        Err(_) => plan.failed = true,
+                    }
                 }
                 for (j, (out, dt)) in jobs.iter().zip(outcomes) {
                     let stage = &p.stages[j.stage];
