@@ -139,6 +139,33 @@ pub fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     out
 }
 
+/// Like `snapshot`, but a table (`.parquet`) is its contents without the timing column
+/// `wall_time_s` (which differs between two computations of the same task).
+pub fn snapshot_untimed(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    snapshot(dir)
+        .into_iter()
+        .map(|(name, bytes)| {
+            if !name.ends_with(".parquet") {
+                return (name, bytes);
+            }
+            let df = repro::pipeline::table::read_parquet(&dir.join(&name)).unwrap();
+            let mut text = String::new();
+            for name in df.get_column_names() {
+                if name.as_str() == "wall_time_s" {
+                    continue;
+                }
+                let c = df.column(name).unwrap();
+                text.push_str(&format!("{name}:"));
+                for i in 0..df.height() {
+                    text.push_str(&format!(" {:?}", c.get(i).unwrap()));
+                }
+                text.push('\n');
+            }
+            (name, text.into_bytes())
+        })
+        .collect()
+}
+
 /// A small pipeline of `util.sleep` tasks: a sweep, a stage that reads it, and a figure.
 pub fn sleep_pipeline(xs: &str, ms: u64, title: &str) -> String {
     format!(
