@@ -211,10 +211,14 @@ mod tests {
         // force, contact minus adhesive pull, does not: measured on this mesh F R/(E h^3) =
         // 9.3, 11.3, 11.1, 10.0 at gamma/(E h) = 0, 5e-4, 1e-3, 2e-3 (the pull grows with the
         // contact's perimeter).
+        // On this coarse mesh the adhering start at gamma/(E h) = 6e-3 is itself unstable
+        // (at delta/R < 1e-3: the adhesive contact jumps, it does not snap through), which
+        // the cycle records as its instability; the snap-throughs are those past delta/R 0.05.
         let mut side: Vec<_> = b
             .probes
             .iter()
             .filter_map(|p| p.buckling.map(|j| (p.x, j.delta, j.force_before - j.pull_before)))
+            .filter(|&(_, d, _)| d > 0.05 * r)
             .collect();
         side.sort_by(|a, b| a.0.total_cmp(&b.0));
         assert!(side.len() >= 3, "{side:?}");

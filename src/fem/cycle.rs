@@ -137,8 +137,9 @@ fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<Step> {
 }
 
 /// The adhering state at delta = 0. Pressed in by four load steps without adhesion, the
-/// adhesion is switched on in eight increments (each Newton from the last: strong adhesion
-/// pulls a wide annulus onto the plate, too far for one Newton), and the plate is withdrawn
+/// adhesion is switched on by continuation in gamma (adaptive increments, each Newton from
+/// the last: strong adhesion pulls a wide annulus onto the plate, too far for one Newton;
+/// eight fixed increments failed from gamma/(E h) ~ 1e-2 on, at h/R = 0.06), and the plate is withdrawn
 /// to delta = 0 in adaptive steps. If it cannot be withdrawn all the way (the contact would
 /// be torn off), the state at the smallest delta reached starts the loading.
 fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
@@ -153,15 +154,23 @@ fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
     if !s.converged {
         return None;
     }
-    const RAMP: usize = 8;
-    for k in 1..=RAMP {
-        let partial = Plate {
-            adhesion: Some(super::adhesion::Adhesion { gamma: ad.gamma * k as f64 / RAMP as f64, ..ad }),
-            ..plate.clone()
-        };
-        s = solve_at(model, &partial, e, press, &s.u, &s.contact.stick, opt);
-        if !s.converged {
-            return None;
+    // Continuation in the work of adhesion, adaptive: an increment Newton cannot follow is
+    // halved (strong adhesion pulls the surface onto the plate over a widening annulus).
+    let (mut t, mut dt) = (0.0f64, 1.0 / 8.0);
+    while t < 1.0 {
+        let next = (t + dt).min(1.0);
+        let partial =
+            Plate { adhesion: Some(super::adhesion::Adhesion { gamma: ad.gamma * next, ..ad }), ..plate.clone() };
+        let trial = solve_at(model, &partial, e, press, &s.u, &s.contact.stick, opt);
+        if trial.converged {
+            s = trial;
+            t = next;
+            dt = (1.5 * dt).min(0.25);
+        } else {
+            dt *= 0.5;
+            if dt < 1.0 / 4096.0 {
+                return None;
+            }
         }
     }
     let max_dd = 0.25 * step;
@@ -203,7 +212,12 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     // With adhesion the reference state is not in equilibrium at delta = 0: the apex jumps
     // into contact (as the plate approaches, before delta = 0). The loading starts from that
     // adhering state.
-    let zero = if plate.adhesion.is_some() { jump_in(model, plate, e, base).unwrap_or(zero) } else { zero };
+    // If no adhering state is found, the loading starts from the reference state, which is
+    // then recorded as what it is: not an equilibrium (not converged).
+    let zero = match plate.adhesion {
+        Some(_) => jump_in(model, plate, e, base).unwrap_or(Step { converged: false, ..zero }),
+        None => zero,
+    };
     let mut loading = vec![CyclePoint { step: zero.clone(), leg: Leg::Loading, inverted: false }];
     // Loading.
     let mut cur = zero.clone();

@@ -21,11 +21,8 @@ fn default_e() -> f64 {
 fn default_nu() -> f64 {
     0.45
 }
-fn default_n_meridian() -> usize {
-    100
-}
 fn default_n_thickness() -> usize {
-    4
+    2
 }
 fn default_grading() -> f64 {
     3.0
@@ -46,9 +43,11 @@ pub struct ShellParams {
     /// Poisson's ratio, default 0.45.
     #[serde(default = "default_nu")]
     pub nu: f64,
-    /// Elements along the meridian (default 100) and through the thickness (default 4).
-    #[serde(default = "default_n_meridian")]
-    pub n_meridian: usize,
+    /// Elements along the meridian (default: 1.5 (R + h) / g0, so that the elements at the
+    /// contact rim resolve the Lennard-Jones range g0; `fem::mesh::meridian_elements`) and
+    /// through the thickness (default 2: quadratic elements carry the bending exactly).
+    #[serde(default)]
+    pub n_meridian: Option<usize>,
     #[serde(default = "default_n_thickness")]
     pub n_thickness: usize,
     /// Ratio of the last to the first element size along the meridian (default 3: fine enough
@@ -66,13 +65,17 @@ impl ShellParams {
         }
         check::positive(e, "E", self.E);
         check::in_open(e, "nu", self.nu, -1.0, 0.5, "Poisson's ratio");
-        check::at_least(e, "n_meridian", self.n_meridian, 4);
+        if let Some(n) = self.n_meridian {
+            check::at_least(e, "n_meridian", n, 4);
+        }
         check::at_least(e, "n_thickness", self.n_thickness, 1);
         check::positive(e, "grading", self.grading);
     }
 
-    fn mesh(&self) -> ShellMesh {
-        ShellMesh::hemisphere(self.R, self.h, self.n_meridian, self.n_thickness, self.grading)
+    /// The mesh, its meridian resolved for the Lennard-Jones range `g0` unless given.
+    fn mesh(&self, g0: f64) -> ShellMesh {
+        let n = self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0));
+        ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
     }
 }
 
@@ -92,7 +95,7 @@ impl Kind for FemMesh {
     }
 
     fn run(p: &ShellParams, _: &Inputs) -> Result<Output> {
-        let m = p.mesh();
+        let m = p.mesh(default_g0());
         let flag = |list: &[usize]| {
             let mut v = vec![false; m.n_nodes()];
             list.iter().for_each(|&a| v[a] = true);
@@ -188,7 +191,7 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = Model::new(sh.mesh(), sh.E, sh.nu, base);
+        let model = Model::new(sh.mesh(self.g0), sh.E, sh.nu, base);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
@@ -217,7 +220,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 5;
+    const VERSION: u32 = 6;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -311,7 +314,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 4;
+    const VERSION: u32 = 5;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     type Params = ProfileParams;

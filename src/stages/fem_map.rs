@@ -55,8 +55,9 @@ pub struct MapModel {
     pub nu: f64,
     /// Equilibrium distance g0 of the Lennard-Jones law (mm).
     pub g0: f64,
-    /// Mesh: elements along the meridian and through the thickness, grading.
-    pub n_meridian: usize,
+    /// Mesh: elements along the meridian (default 1.5 (R + h) / g0,
+    /// `fem::mesh::meridian_elements`) and through the thickness (default 2), grading.
+    pub n_meridian: Option<usize>,
     pub n_thickness: usize,
     pub grading: f64,
     /// Contact penalty in units of E/h.
@@ -79,8 +80,8 @@ impl Default for MapModel {
             E: 1.3,
             nu: 0.45,
             g0: 0.1,
-            n_meridian: 100,
-            n_thickness: 4,
+            n_meridian: None,
+            n_thickness: 2,
             grading: 3.0,
             penalty: 1000.0,
             delta_max: 0.35,
@@ -100,7 +101,9 @@ impl MapModel {
         check::positive(e, "model.penalty", self.penalty);
         check::positive(e, "model.grading", self.grading);
         check::in_open(e, "model.nu", self.nu, -1.0, 0.5, "Poisson's ratio");
-        check::at_least(e, "model.n_meridian", self.n_meridian, 4);
+        if let Some(n) = self.n_meridian {
+            check::at_least(e, "model.n_meridian", n, 4);
+        }
         check::at_least(e, "model.n_thickness", self.n_thickness, 1);
         check::at_least(e, "model.steps", self.steps, 1);
         check::in_open(e, "model.delta_max", self.delta_max, 0.0, 1.0, "delta/R");
@@ -112,7 +115,9 @@ impl MapModel {
     }
 
     fn shell(&self, h_over_r: f64) -> Model {
-        let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), self.n_meridian, self.n_thickness, self.grading);
+        let h = self.h(h_over_r);
+        let n = self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, h, self.g0));
+        let mesh = ShellMesh::hemisphere(self.R, h, n, self.n_thickness, self.grading);
         Model::new(mesh, self.E, self.nu, Base::Clamped)
     }
 
@@ -174,7 +179,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -221,7 +226,7 @@ impl Kind for FemBuckling {
 }
 
 fn default_guess() -> f64 {
-    3e-3
+    2e-2
 }
 fn default_growth() -> f64 {
     2.0
@@ -241,7 +246,7 @@ pub struct GammaCParams {
     /// Coulomb friction coefficient (sweepable; default 0).
     #[serde(default)]
     pub mu: f64,
-    /// First gamma/(E h) tried (default 3e-3), factor between trials until the answer
+    /// First gamma/(E h) tried (default 2e-2), factor between trials until the answer
     /// changes (default 2), largest gamma/(E h) tried (default 0.1).
     #[serde(default = "default_guess")]
     pub guess: f64,
@@ -261,7 +266,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
@@ -355,7 +360,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
