@@ -196,6 +196,19 @@ struct StagePlan {
     failed: bool,
 }
 
+impl StagePlan {
+    /// Records the outcome of a job of this stage (a failure fails the stage).
+    fn settle(&mut self, j: &Job, out: Result<Output, String>, dt: f64) {
+        match out {
+            Ok(o) => {
+                self.outs[j.point] = Some((j.key.clone(), o));
+                self.times[j.point] = dt;
+            }
+            Err(_) => self.failed = true,
+        }
+    }
+}
+
 pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport> {
     let start = Instant::now();
     let mut target_idx = Vec::new();
@@ -470,14 +483,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     );
                     r.error = out.as_ref().err().cloned();
                     records.push(r);
-                    let plan = plans.get_mut(&j.stage).unwrap();
-                    match out {
-                        Ok(o) => {
-                            plan.outs[j.point] = Some((j.key.clone(), o));
-                            plan.times[j.point] = dt;
-                        }
-                        Err(_) => plan.failed = true,
-                    }
+                    plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
                 }
                 for (j, (out, dt)) in jobs.iter().zip(outcomes) {
                     let stage = &p.stages[j.stage];
@@ -492,14 +498,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     r.error = out.as_ref().err().cloned();
                     r.ran_on = j.ran_on.clone();
                     records.push(r);
-                    let plan = plans.get_mut(&j.stage).unwrap();
-                    match out {
-                        Ok(o) => {
-                            plan.outs[j.point] = Some((j.key.clone(), o));
-                            plan.times[j.point] = dt;
-                        }
-                        Err(_) => plan.failed = true,
-                    }
+                    plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
                 }
             }
             // Adaptive stages whose points are all known choose their next points.
