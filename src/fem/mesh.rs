@@ -161,6 +161,28 @@ mod tests {
     use std::f64::consts::PI;
 
     #[test]
+    fn the_default_meridian_resolves_g0_up_to_the_snap_rim() {
+        // The outer elements up to phi = 33 deg (r ~ 0.55 R, where the contact rim is at the
+        // snap) are at most g0 long, for any R, h and g0 (the rule scales with (R + h) / g0),
+        // and a fifth fewer elements would not resolve it.
+        let longest = |radius: f64, h: f64, n: usize| {
+            let a = graded_angles(n, 3.0);
+            a.windows(2).filter(|w| w[0] < 33f64.to_radians()).map(|w| (radius + h) * (w[1] - w[0])).fold(0.0, f64::max)
+        };
+        for radius in [10.0, 15.0, 25.0, 40.0] {
+            for h_over_r in [0.02, 0.06, 0.2] {
+                for g0 in [0.05, 0.1, 0.2] {
+                    let h = h_over_r * radius;
+                    let n = meridian_elements(radius, h, g0);
+                    assert!(longest(radius, h, n) <= 1.005 * g0, "{radius} {h} {g0}: {n}");
+                    assert!(longest(radius, h, n * 4 / 5) > g0, "{radius} {h} {g0}: {n}");
+                }
+            }
+        }
+        assert_eq!(meridian_elements(15.0, 1.0, 0.1), 240);
+    }
+
+    #[test]
     fn grading_and_counts() {
         let a = graded_angles(10, 4.0);
         assert_eq!(a.len(), 11);
