@@ -19,8 +19,7 @@
 //! point already computed. A dry run follows the rounds as far as the cache answers them.
 
 use super::kind::{DynKind, Output};
-use super::spec::Point;
-use super::table::format_number;
+use super::spec::{label_token, Point};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
@@ -59,8 +58,7 @@ impl AdaptiveAxis {
 
     /// The parameter value at a sampling coordinate, rounded to 12 significant digits.
     pub fn value(&self, t: f64) -> f64 {
-        let v = if self.log { 10f64.powf(t) } else { t };
-        format!("{v:.11e}").parse().unwrap()
+        super::spec::round12(if self.log { 10f64.powf(t) } else { t })
     }
 
     /// The smallest spacing refinement may reach.
@@ -210,7 +208,7 @@ fn relabel(label: &str, param: &str, x: f64) -> String {
     let prefix = format!("{param}=");
     label
         .split(' ')
-        .map(|tok| if tok.starts_with(&prefix) { format!("{prefix}{}", format_number(x)) } else { tok.to_string() })
+        .map(|tok| if tok.starts_with(&prefix) { label_token(param, x) } else { tok.to_string() })
         .collect::<Vec<_>>()
         .join(" ")
 }

@@ -190,9 +190,8 @@ struct StagePlan {
     prev: Option<StageManifest>,
     inputs: BTreeMap<String, Hash>,
     points: Vec<Point>,
-    outs: Vec<Option<(Hash, Output)>>,
-    /// Per point: the wall time of its task.
-    times: Vec<f64>,
+    /// Per point, once known: its key, output and the wall time of its task.
+    outs: Vec<Option<(Hash, Output, f64)>>,
     failed: bool,
 }
 
@@ -201,8 +200,7 @@ impl StagePlan {
     fn settle(&mut self, j: &Job, out: Result<Output, String>, dt: f64) {
         match out {
             Ok(o) => {
-                self.outs[j.point] = Some((j.key.clone(), o));
-                self.times[j.point] = dt;
+                self.outs[j.point] = Some((j.key.clone(), o, dt));
             }
             Err(_) => self.failed = true,
         }
@@ -300,7 +298,6 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     inputs,
                     points: stage.points.clone(),
                     outs: Vec::new(),
-                    times: Vec::new(),
                     failed: false,
                 },
             );
@@ -339,8 +336,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     match lookup {
                         Ok(entry) => {
                             records.push(TaskRecord::new(stage, &pt.label, Some(key.clone()), Status::Cached, None));
-                            plan.outs.push(Some((key, entry.output)));
-                            plan.times.push(entry.wall_time_s);
+                            plan.outs.push(Some((key, entry.output, entry.wall_time_s)));
                         }
                         Err(miss) => {
                             let mut reason = match miss {
@@ -373,7 +369,6 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                 }
                             }
                             plan.outs.push(None);
-                            plan.times.push(0.0);
                         }
                     }
                 }
@@ -559,9 +554,14 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     Some(axis) => super::adaptive::publication_order(axis, &plan.points),
                     None => (0..plan.points.len()).collect(),
                 };
-                let mut outs: Vec<Option<(Hash, Output)>> = plan.outs;
-                let points: Vec<(Hash, Output)> = order.iter().map(|&i| outs[i].take().unwrap()).collect();
-                let times: Vec<f64> = order.iter().map(|&i| plan.times[i]).collect();
+                let mut outs = plan.outs;
+                let (points, times): (Vec<(Hash, Output)>, Vec<f64>) = order
+                    .iter()
+                    .map(|&i| {
+                        let (k, o, dt) = outs[i].take().unwrap();
+                        ((k, o), dt)
+                    })
+                    .unzip();
                 let hashes: Vec<Hash> = points.iter().map(|(_, o)| super::cache::output_hash(o)).collect();
                 let mut table = Table::new();
                 for (_, o) in &points {

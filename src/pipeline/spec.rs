@@ -584,8 +584,17 @@ fn grid(cx: &mut Ctx, stage: &str, param: &str, form: &str, body: &Node) -> Opti
 pub fn spaced(log: bool, a: f64, b: f64, n: usize, i: usize) -> f64 {
     let t = if n == 1 { 0.0 } else { i as f64 / (n - 1) as f64 };
     let x = a + (b - a) * t;
-    let v = if log { 10f64.powf(x) } else { x };
-    format!("{v:.11e}").parse().unwrap()
+    round12(if log { 10f64.powf(x) } else { x })
+}
+
+/// `x` rounded to 12 significant digits: how every swept value is stored.
+pub fn round12(x: f64) -> f64 {
+    format!("{x:.11e}").parse().unwrap()
+}
+
+/// The `name=value` token of a sweep point's label.
+pub fn label_token(name: &str, x: f64) -> String {
+    format!("{name}={}", super::table::format_number(x))
 }
 
 fn expand_points<'a>(
@@ -653,7 +662,7 @@ fn expand_points<'a>(
         for ((name, vals), &pick) in axes.iter().zip(&picks) {
             let (x, node) = vals[pick];
             value.insert(name.clone(), json_number(x));
-            labels.push(format!("{name}={}", super::table::format_number(x)));
+            labels.push(label_token(name, x));
             swept_nodes.insert(name.clone(), node);
         }
         points.push(RawPoint { value: Value::Object(value), label: labels.join(" "), swept_nodes });
