@@ -169,6 +169,9 @@ fn fail(e: anyhow::Error) -> ExitCode {
 }
 
 fn main() -> ExitCode {
+    // Tasks run in parallel (rayon); a sparse factorisation inside one task gains nothing
+    // from threads of its own on 2 cores, only contention.
+    faer::set_global_parallelism(faer::Par::Seq);
     let cli = Cli::parse();
     let registry = repro::stages::registry();
     let result: anyhow::Result<ExitCode> = (|| match cli.command {

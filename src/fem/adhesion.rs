@@ -26,6 +26,7 @@
 //! Units: lengths of the mesh (mm), dgamma in force per length (N/mm), consistent with E.
 
 use super::mesh::ShellMesh;
+use super::system::TangentSink;
 use std::f64::consts::PI;
 
 /// Gauss-Legendre points per outer edge for the adhesive energy.
@@ -110,7 +111,7 @@ impl Adhesion {
         u: &[f64],
         z_plate: f64,
         residual: &mut [f64],
-        triplets: &mut Vec<(usize, usize, f64)>,
+        triplets: &mut impl TangentSink,
         q: &mut [f64],
         tangent: Tangent,
     ) -> (f64, f64) {
@@ -121,6 +122,9 @@ impl Adhesion {
             let z: [f64; 3] = std::array::from_fn(|k| mesh.nodes[nodes[k]][1] + u[2 * nodes[k] + 1]);
             let zr = |k: usize| 2 * nodes[k];
             let zz = |k: usize| 2 * nodes[k] + 1;
+            // The edge's 6 x 6 tangent (local dofs 2k: r, 2k + 1: z of its node k), summed over
+            // the Gauss points before it goes to the sink.
+            let mut local = [[0.0; 6]; 6];
             for &(xi, w) in &GAUSS5 {
                 let n = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
                 let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
@@ -139,19 +143,19 @@ impl Adhesion {
                     q[zz(k)] += w * law.d2 * n[k] * jac;
                     q[zr(k)] -= w * law.d1 * djac[k];
                     for l in 0..3 {
-                        let kzz = w * d2 * n[k] * n[l] * jac;
                         let kzr = -w * law.d1 * n[k] * djac[l];
-                        let krr = w * law.phi * 2.0 * PI * (n[k] * dn[l] + dn[k] * n[l]);
-                        if kzz != 0.0 {
-                            triplets.push((zz(k), zz(l), kzz));
-                        }
-                        if kzr != 0.0 {
-                            triplets.push((zz(k), zr(l), kzr));
-                            triplets.push((zr(l), zz(k), kzr));
-                        }
-                        if krr != 0.0 {
-                            triplets.push((zr(k), zr(l), krr));
-                        }
+                        local[2 * k + 1][2 * l + 1] += w * d2 * n[k] * n[l] * jac;
+                        local[2 * k + 1][2 * l] += kzr;
+                        local[2 * l][2 * k + 1] += kzr;
+                        local[2 * k][2 * l] += w * law.phi * 2.0 * PI * (n[k] * dn[l] + dn[k] * n[l]);
+                    }
+                }
+            }
+            let dof = |a: usize| 2 * nodes[a / 2] + a % 2;
+            for (a, row) in local.iter().enumerate() {
+                for (b, &v) in row.iter().enumerate() {
+                    if v != 0.0 {
+                        triplets.push((dof(a), dof(b), v));
                     }
                 }
             }

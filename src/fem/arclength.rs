@@ -16,7 +16,7 @@
 
 use super::contact::Plate;
 use super::indent::{evaluate, Evaluation, Options, Step};
-use super::system::Model;
+use super::system::{Model, Stiffness};
 
 /// Step control of the continuation (lengths in the mesh's units).
 #[derive(Clone, Copy, Debug)]
@@ -51,7 +51,7 @@ fn dot(a_u: &[f64], a_d: f64, b_u: &[f64], b_d: f64) -> f64 {
 /// tangent) or, without one, so that delta moves with the sign of `sign`.
 fn tangent(
     model: &Model,
-    tangent: &[(usize, usize, f64)],
+    tangent: &Stiffness,
     q: &[f64],
     orient: Option<(&[f64], f64)>,
     sign: f64,

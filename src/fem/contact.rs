@@ -21,6 +21,7 @@
 
 use super::adhesion::{Adhesion, Tangent};
 use super::mesh::ShellMesh;
+use super::system::TangentSink;
 
 /// The contact state of the outer nodes at one configuration.
 #[derive(Clone, Debug, Default)]
@@ -138,7 +139,7 @@ impl Plate {
         z_plate: f64,
         stick: &[f64],
         f_ext: &mut [f64],
-        triplets: &mut Vec<(usize, usize, f64)>,
+        triplets: &mut impl TangentSink,
         q: &mut [f64],
         tangent: Tangent,
     ) -> ContactState {

@@ -188,6 +188,10 @@ fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
     Some(s)
 }
 
+/// How many flattened loading states (nearest in delta first) the snap-back's landing
+/// starts from before it gives up.
+const SNAP_BACK_STARTS: usize = 4;
+
 fn work(points: &[CyclePoint]) -> f64 {
     points
         .windows(2)
@@ -302,13 +306,24 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         return cycle;
     }
     // Unloading, warm-started from the loading states once back on the flattened branch.
-    let flattened_near = |delta: f64| -> Vec<f64> {
-        loading
-            .iter()
-            .filter(|p| !p.inverted && p.step.converged)
-            .min_by(|a, b| (a.step.delta - delta).abs().total_cmp(&(b.step.delta - delta).abs()))
-            .map(|p| p.step.u.clone())
-            .unwrap_or_else(|| vec![0.0; model.n_dofs()])
+    // The landing of the snap-back starts from the flattened loading state nearest in delta,
+    // or, if Newton finds nothing from there (adhesion makes the basin narrow), from the next
+    // nearest ones.
+    let land_flattened = |delta: f64| -> Step {
+        let mut near: Vec<&Step> =
+            loading.iter().filter(|p| !p.inverted && p.step.converged).map(|p| &p.step).collect();
+        near.sort_by(|a, b| (a.delta - delta).abs().total_cmp(&(b.delta - delta).abs()));
+        let zero = vec![0.0; model.n_dofs()];
+        let starts = near.iter().take(SNAP_BACK_STARTS).map(|s| &s.u).chain(near.is_empty().then_some(&zero));
+        let mut last = None;
+        for start in starts {
+            let s = land(model, plate, e, delta, start);
+            if s.converged && !is_inverted(model, &s) {
+                return s;
+            }
+            last = Some(s);
+        }
+        last.expect("at least one start")
     };
     let mut unloading = vec![CyclePoint { step: cur.clone(), leg: Leg::Unloading, inverted }];
     if cycle.complete && inverted {
@@ -351,7 +366,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             cycle.complete = false;
         }
         // Snap back at the limit point to the flattened branch.
-        let mut back = land(model, plate, e, last.delta, &flattened_near(last.delta));
+        let mut back = land_flattened(last.delta);
         if back.converged && !is_inverted(model, &back) {
             back.stable = stable(&back);
             cycle.snap_back = Some(Jump {

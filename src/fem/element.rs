@@ -53,6 +53,7 @@ pub const GAUSS: [(f64, f64); 3] =
 
 /// A Gauss point in the reference configuration: shape values, their R and Z derivatives,
 /// the radius and the weight 2 pi R det(J) w.
+#[derive(Clone, Copy)]
 struct Point {
     n: [f64; 8],
     dn: [[f64; 2]; 8],
@@ -60,35 +61,44 @@ struct Point {
     dv: f64,
 }
 
-fn points(x: &[[f64; 2]; 8]) -> Vec<Point> {
-    let mut out = Vec::with_capacity(9);
-    for &(xi, wx) in &GAUSS {
-        for &(eta, wy) in &GAUSS {
-            let (n, d) = shape(xi, eta);
-            let mut j = [[0.0; 2]; 2]; // j[c][k] = dX_c / dxi_k
-            let mut radius = 0.0;
-            for a in 0..8 {
-                radius += n[a] * x[a][0];
-                for c in 0..2 {
-                    for k in 0..2 {
-                        j[c][k] += x[a][c] * d[a][k];
+/// The reference geometry of one element at its 3 x 3 Gauss points (shape values and
+/// derivatives, radius, weight): it depends only on the mesh, so a model computes it once
+/// instead of at every assembly.
+#[derive(Clone, Copy)]
+pub struct Geometry([Point; 9]);
+
+impl Geometry {
+    /// Panics on an element with a non-positive Jacobian (a broken mesh).
+    pub fn new(x: &[[f64; 2]; 8]) -> Geometry {
+        let mut out = [Point { n: [0.0; 8], dn: [[0.0; 2]; 8], radius: 0.0, dv: 0.0 }; 9];
+        for (i, &(xi, wx)) in GAUSS.iter().enumerate() {
+            for (k, &(eta, wy)) in GAUSS.iter().enumerate() {
+                let (n, d) = shape(xi, eta);
+                let mut j = [[0.0; 2]; 2]; // j[c][k] = dX_c / dxi_k
+                let mut radius = 0.0;
+                for a in 0..8 {
+                    radius += n[a] * x[a][0];
+                    for c in 0..2 {
+                        for k in 0..2 {
+                            j[c][k] += x[a][c] * d[a][k];
+                        }
                     }
                 }
-            }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            assert!(det > 0.0, "element with non-positive Jacobian {det}");
-            // dN/dX_c = dN/dxi_k (J^-1)_kc.
-            let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
-            let mut dn = [[0.0; 2]; 8];
-            for a in 0..8 {
-                for c in 0..2 {
-                    dn[a][c] = d[a][0] * inv[0][c] + d[a][1] * inv[1][c];
+                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                assert!(det > 0.0, "element with non-positive Jacobian {det}");
+                // dN/dX_c = dN/dxi_k (J^-1)_kc.
+                let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+                let mut dn = [[0.0; 2]; 8];
+                for a in 0..8 {
+                    for c in 0..2 {
+                        dn[a][c] = d[a][0] * inv[0][c] + d[a][1] * inv[1][c];
+                    }
                 }
+                out[3 * i + k] = Point { n, dn, radius, dv: 2.0 * std::f64::consts::PI * radius * det * wx * wy };
             }
-            out.push(Point { n, dn, radius, dv: 2.0 * std::f64::consts::PI * radius * det * wx * wy });
         }
+        Geometry(out)
     }
-    out
 }
 
 /// Components (F_rR, F_rZ, F_zR, F_zZ, F_tt) at a point.
@@ -138,8 +148,8 @@ fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5]
 /// The element's strain energy (for tests) or None if inverted somewhere.
 pub fn energy(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
     let mut w = 0.0;
-    for p in points(x) {
-        let f = deformation(&p, u);
+    for p in &Geometry::new(x).0 {
+        let f = deformation(p, u);
         let j = (f[0] * f[3] - f[1] * f[2]) * f[4];
         if !(j > 0.0) {
             return None;
@@ -159,43 +169,53 @@ pub fn forces_and_tangent(
     mu: f64,
     lambda: f64,
 ) -> Option<([f64; 16], [[f64; 16]; 16])> {
+    forces_and_tangent_of(&Geometry::new(x), u, mu, lambda)
+}
+
+/// `forces_and_tangent` of an element whose Gauss-point geometry is known.
+///
+/// G (5 x 16) is sparse: the column of u_r at node b is (dN_b/dR, dN_b/dZ, 0, 0, N_b/R), that
+/// of u_z (0, 0, dN_b/dR, dN_b/dZ, 0); the products below use only its nonzeros, and K =
+/// Int G^T A G dV0 is symmetric (A = dP/dF is, W being a potential), so only r >= q is
+/// summed and mirrored.
+#[allow(clippy::type_complexity)]
+pub fn forces_and_tangent_of(
+    geometry: &Geometry,
+    u: &[[f64; 2]; 8],
+    mu: f64,
+    lambda: f64,
+) -> Option<([f64; 16], [[f64; 16]; 16])> {
     let mut fint = [0.0; 16];
     let mut k = [[0.0; 16]; 16];
-    for pt in points(x) {
-        let f = deformation(&pt, u);
+    for pt in &geometry.0 {
+        let f = deformation(pt, u);
         let (p, a) = stress(&f, mu, lambda)?;
-        // G: 5 x 16.
-        let mut g = [[0.0; 16]; 5];
+        let hoop: [f64; 8] = std::array::from_fn(|b| pt.n[b] / pt.radius);
+        // ag[q] = (A G)_{., q} dV0, the 5 components of column q.
+        let mut ag = [[0.0; 5]; 16];
         for b in 0..8 {
-            g[0][2 * b] = pt.dn[b][0];
-            g[1][2 * b] = pt.dn[b][1];
-            g[4][2 * b] = pt.n[b] / pt.radius;
-            g[2][2 * b + 1] = pt.dn[b][0];
-            g[3][2 * b + 1] = pt.dn[b][1];
-        }
-        let mut ag = [[0.0; 16]; 5];
-        for c in 0..5 {
-            for d in 0..5 {
-                if a[c][d] != 0.0 {
-                    for q in 0..16 {
-                        ag[c][q] += a[c][d] * g[d][q];
-                    }
-                }
-            }
-        }
-        for q in 0..16 {
-            let mut s = 0.0;
+            let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], hoop[b]);
             for c in 0..5 {
-                s += g[c][q] * p[c];
+                ag[2 * b][c] = (a[c][0] * dr + a[c][1] * dz + a[c][4] * t) * pt.dv;
+                ag[2 * b + 1][c] = (a[c][2] * dr + a[c][3] * dz) * pt.dv;
             }
-            fint[q] += s * pt.dv;
-            for r in 0..16 {
-                let mut s = 0.0;
-                for c in 0..5 {
-                    s += g[c][q] * ag[c][r];
+        }
+        for b in 0..8 {
+            let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], hoop[b]);
+            fint[2 * b] += (dr * p[0] + dz * p[1] + t * p[4]) * pt.dv;
+            fint[2 * b + 1] += (dr * p[2] + dz * p[3]) * pt.dv;
+            for r in 2 * b..16 {
+                let col = &ag[r];
+                k[2 * b][r] += dr * col[0] + dz * col[1] + t * col[4];
+                if r > 2 * b {
+                    k[2 * b + 1][r] += dr * col[2] + dz * col[3];
                 }
-                k[q][r] += s * pt.dv;
             }
+        }
+    }
+    for q in 0..16 {
+        for r in 0..q {
+            k[q][r] = k[r][q];
         }
     }
     Some((fint, k))

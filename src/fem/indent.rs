@@ -9,7 +9,7 @@
 
 use super::adhesion::Tangent;
 use super::contact::{ContactState, Plate};
-use super::system::{Model, Triplets};
+use super::system::{Model, Stiffness};
 
 /// One converged (or the last failed) state of the path.
 #[derive(Clone, Debug)]
@@ -46,7 +46,7 @@ pub fn apex_z(model: &Model) -> f64 {
 /// The free residual at one configuration, with the tangent and the contact state.
 pub(crate) struct Evaluation {
     pub residual: Vec<f64>,
-    pub tangent: Triplets,
+    pub tangent: Stiffness,
     pub contact: ContactState,
     /// Max-norm of the residual.
     pub norm: f64,

@@ -31,7 +31,7 @@
 use super::adhesion::Tangent;
 use super::contact::Plate;
 use super::indent::{apex_z, Step};
-use super::system::Model;
+use super::system::{Model, TangentSink};
 
 /// Default pressure threshold (fraction of the peak pressure) above which a contact node
 /// is held against lifting in the stability test.

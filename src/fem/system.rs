@@ -1,6 +1,7 @@
 //! Global equilibrium of the axisymmetric shell model: assembly of the element forces and
 //! tangents (rayon over elements), the supports (axis, clamped or roller base), and the
-//! sparse direct solve of the tangent system (faer's sparse LU).
+//! sparse direct solve of the tangent system (faer's sparse LU on a pattern built once per
+//! model, into which the elements' blocks are added through precomputed slots).
 //!
 //! Unknowns: nodal displacements (u_r, u_z), dof 2a and 2a + 1 of node a, in the units of the
 //! mesh (lengths) and of E (stresses); forces are then in E x length^2.
@@ -8,17 +9,28 @@
 // Index loops over local dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{forces_and_tangent, lame};
+use super::element::{forces_and_tangent_of, lame, Geometry};
 use super::mesh::ShellMesh;
 use anyhow::{anyhow, Result};
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::Mat;
 use rayon::prelude::*;
+use std::sync::{Arc, OnceLock};
 
-/// A sparse matrix as (row, column, value) entries; duplicates are summed.
-pub type Triplets = Vec<(usize, usize, f64)>;
+/// Where tangent entries (i, j, v) on the full dof numbering go; duplicates are summed.
+/// A `Vec` collects them as triplets (the interface laws' unit tests); a `Stiffness` adds
+/// them into the model's sparse matrix.
+pub trait TangentSink {
+    fn push(&mut self, entry: (usize, usize, f64));
+}
+
+impl TangentSink for Vec<(usize, usize, f64)> {
+    fn push(&mut self, entry: (usize, usize, f64)) {
+        Vec::push(self, entry);
+    }
+}
 
 /// Support of the shell's base (the equator section, z = 0).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,19 +48,134 @@ pub struct Model {
     pub lambda: f64,
     /// Constrained dofs (u = prescribed value there; zero for the supports).
     pub fixed: Vec<bool>,
-    /// The symbolic LU factorisation of the last tangent's sparsity pattern, reused while
-    /// the pattern stays the same (it does along a Newton solve: contact, friction and
-    /// adhesion add entries only inside the elements' blocks).
-    symbolic: std::sync::Mutex<Option<Pattern>>,
+    /// Each element's Gauss-point geometry (it depends only on the mesh).
+    geometry: Vec<Geometry>,
+    /// The sparsity pattern of every tangent of this model, with its symbolic factorisations.
+    pattern: Arc<Pattern>,
     /// How many symbolic / numeric LU factorisations were made (for tests and profiles).
     counts: [std::sync::atomic::AtomicUsize; 2],
 }
 
-/// A sparsity pattern (column pointers, row indices) and its symbolic LU factorisation.
+/// The sparsity pattern of the free-free block of the tangent: every pair of dofs of one
+/// element. The interface terms lie inside it (contact and friction couple the two dofs of
+/// a node, adhesion the three outer nodes of an element's edge), so it is the same for every
+/// tangent of a model; it is built once, with each element's 16 x 16 block mapped to its
+/// value slots, and its symbolic LU and Cholesky factorisations are made once.
 struct Pattern {
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
-    lu: SymbolicLu<usize>,
+    /// Free numbering of the dofs (usize::MAX for fixed ones) and the number of free dofs.
+    index: Vec<usize>,
+    symbolic: SymbolicSparseColMat<usize>,
+    /// Per element, the value slot of local entry (q, r) (u32::MAX: a fixed dof).
+    slots: Vec<[u32; 256]>,
+    /// The slot of the transposed entry of each slot (the pattern is symmetric).
+    transposed: Vec<u32>,
+    lu: OnceLock<std::result::Result<SymbolicLu<usize>, String>>,
+    llt: OnceLock<Option<SymbolicLlt<usize>>>,
+}
+
+impl Pattern {
+    fn new(mesh: &ShellMesh, fixed: &[bool]) -> Pattern {
+        let mut index = vec![usize::MAX; fixed.len()];
+        let mut m = 0;
+        for (i, slot) in index.iter_mut().enumerate() {
+            if !fixed[i] {
+                *slot = m;
+                m += 1;
+            }
+        }
+        let local_dofs = |el: &[usize; 8]| -> [usize; 16] { std::array::from_fn(|q| 2 * el[q / 2] + q % 2) };
+        let mut columns: Vec<Vec<usize>> = vec![Vec::new(); m];
+        for el in &mesh.elements {
+            let dofs = local_dofs(el);
+            for &j in &dofs {
+                if index[j] == usize::MAX {
+                    continue;
+                }
+                columns[index[j]].extend(dofs.iter().map(|&i| index[i]).filter(|&i| i != usize::MAX));
+            }
+        }
+        let mut col_ptr = Vec::with_capacity(m + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for col in &mut columns {
+            col.sort_unstable();
+            col.dedup();
+            row_idx.extend_from_slice(col);
+            col_ptr.push(row_idx.len());
+        }
+        assert!(row_idx.len() < u32::MAX as usize, "tangent pattern too large");
+        let slot_of = |i: usize, j: usize| -> u32 {
+            let (fi, fj) = (index[i], index[j]);
+            if fi == usize::MAX || fj == usize::MAX {
+                return u32::MAX;
+            }
+            let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
+            (col_ptr[fj] + rows.binary_search(&fi).expect("an element's entry is in the pattern")) as u32
+        };
+        let slots = mesh
+            .elements
+            .iter()
+            .map(|el| {
+                let dofs = local_dofs(el);
+                std::array::from_fn(|qr| slot_of(dofs[qr / 16], dofs[qr % 16]))
+            })
+            .collect();
+        let mut transposed = vec![0u32; row_idx.len()];
+        for j in 0..m {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let i = row_idx[k];
+                let rows = &row_idx[col_ptr[i]..col_ptr[i + 1]];
+                transposed[k] = (col_ptr[i] + rows.binary_search(&j).expect("the pattern is symmetric")) as u32;
+            }
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
+        Pattern { index, symbolic, slots, transposed, lu: OnceLock::new(), llt: OnceLock::new() }
+    }
+
+    fn n_free(&self) -> usize {
+        self.symbolic.ncols()
+    }
+
+    /// The value slot of entry (i, j) of the full numbering; None for a fixed dof.
+    fn slot(&self, i: usize, j: usize) -> Option<usize> {
+        let (fi, fj) = (self.index[i], self.index[j]);
+        if fi == usize::MAX || fj == usize::MAX {
+            return None;
+        }
+        let (col_ptr, row_idx) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
+        let k = rows.binary_search(&fi).unwrap_or_else(|_| {
+            panic!("tangent entry ({i}, {j}) couples dofs of no common element: outside the model's pattern")
+        });
+        Some(col_ptr[fj] + k)
+    }
+}
+
+/// A tangent matrix of a model: the values of its free-free block on the model's pattern
+/// (entries on fixed dofs are dropped: du = 0 there).
+#[derive(Clone)]
+pub struct Stiffness {
+    pattern: Arc<Pattern>,
+    values: Vec<f64>,
+}
+
+impl TangentSink for Stiffness {
+    fn push(&mut self, (i, j, v): (usize, usize, f64)) {
+        if let Some(k) = self.pattern.slot(i, j) {
+            self.values[k] += v;
+        }
+    }
+}
+
+impl Stiffness {
+    fn matrix(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.pattern.symbolic.as_ref(), &self.values)
+    }
+
+    /// Exactly symmetric (no slipping friction node, whose tangent is not).
+    fn is_symmetric(&self) -> bool {
+        self.values.iter().zip(&self.pattern.transposed).all(|(&v, &t)| v == self.values[t as usize])
+    }
 }
 
 impl Model {
@@ -64,39 +191,47 @@ impl Model {
                 fixed[2 * a] = true;
             }
         }
-        Model { mesh, mu, lambda, fixed, symbolic: std::sync::Mutex::new(None), counts: Default::default() }
+        let geometry =
+            mesh.elements.iter().map(|el| Geometry::new(&std::array::from_fn(|a| mesh.nodes[el[a]]))).collect();
+        let pattern = Arc::new(Pattern::new(&mesh, &fixed));
+        Model { mesh, mu, lambda, fixed, geometry, pattern, counts: Default::default() }
     }
 
     pub fn n_dofs(&self) -> usize {
         2 * self.mesh.n_nodes()
     }
 
-    /// Internal forces and the tangent as triplets (duplicates to be summed), or None if an
-    /// element is inverted.
-    pub fn assemble(&self, u: &[f64]) -> Option<(Vec<f64>, Triplets)> {
-        let local: Option<Vec<_>> = self
-            .mesh
-            .elements
-            .par_iter()
-            .map(|el| {
-                let x: [[f64; 2]; 8] = std::array::from_fn(|a| self.mesh.nodes[el[a]]);
-                let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-                forces_and_tangent(&x, &ue, self.mu, self.lambda).map(|fk| (el, fk))
-            })
-            .collect();
-        let local = local?;
+    /// A zero tangent on this model's pattern.
+    pub fn zero_stiffness(&self) -> Stiffness {
+        Stiffness { pattern: self.pattern.clone(), values: vec![0.0; self.pattern.symbolic.row_idx().len()] }
+    }
+
+    /// Internal forces and the tangent, or None if an element is inverted.
+    pub fn assemble(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
+        // Each element writes its forces and tangent in place (collecting them would copy
+        // the 2 kB blocks around).
+        let mut local = vec![([0.0; 16], [[0.0; 16]; 16]); self.mesh.elements.len()];
+        let ok = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
+            let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
+            forces_and_tangent_of(geometry, &ue, self.mu, self.lambda).map(|fk| *out = fk).is_some()
+        });
+        if !ok {
+            return None;
+        }
         let mut f = vec![0.0; self.n_dofs()];
-        let mut triplets = Vec::with_capacity(local.len() * 256);
-        for (el, (fe, ke)) in local {
-            let dof = |q: usize| 2 * el[q / 2] + q % 2;
+        let mut k = self.zero_stiffness();
+        for ((el, slots), (fe, ke)) in self.mesh.elements.iter().zip(&self.pattern.slots).zip(&local) {
             for q in 0..16 {
-                f[dof(q)] += fe[q];
+                f[2 * el[q / 2] + q % 2] += fe[q];
                 for r in 0..16 {
-                    triplets.push((dof(q), dof(r), ke[q][r]));
+                    let slot = slots[16 * q + r];
+                    if slot != u32::MAX {
+                        k.values[slot as usize] += ke[q][r];
+                    }
                 }
             }
         }
-        Some((f, triplets))
+        Some((f, k))
     }
 
     /// The stored strain energy (None if an element is inverted).
@@ -112,45 +247,17 @@ impl Model {
             .sum()
     }
 
-    /// Numbering of the free dofs (usize::MAX for fixed ones) and their count.
-    fn free_index(&self) -> (Vec<usize>, usize) {
-        let mut index = vec![usize::MAX; self.n_dofs()];
-        let mut m = 0;
-        for (i, slot) in index.iter_mut().enumerate() {
-            if !self.fixed[i] {
-                *slot = m;
-                m += 1;
-            }
-        }
-        (index, m)
+    /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones).
+    pub fn solve(&self, k: &Stiffness, rhs: &[f64]) -> Result<Vec<f64>> {
+        Ok(self.solve_many(k, &[rhs])?.remove(0))
     }
 
-    /// The free-free block of a matrix given as triplets.
-    fn free_matrix(
-        &self,
-        triplets: &[(usize, usize, f64)],
-        index: &[usize],
-        m: usize,
-    ) -> Result<SparseColMat<usize, f64>> {
-        let entries: Vec<Triplet<usize, usize, f64>> = triplets
-            .iter()
-            .filter(|&&(i, j, _)| index[i] != usize::MAX && index[j] != usize::MAX)
-            .map(|&(i, j, v)| Triplet::new(index[i], index[j], v))
-            .collect();
-        SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &entries).map_err(|e| anyhow!("sparse tangent: {e:?}"))
-    }
-
-    /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones), K given as triplets.
-    pub fn solve(&self, triplets: &[(usize, usize, f64)], rhs: &[f64]) -> Result<Vec<f64>> {
-        Ok(self.solve_many(triplets, &[rhs])?.remove(0))
-    }
-
-    /// Solves K x = b for several right-hand sides with one factorisation.
-    pub fn solve_many(&self, triplets: &[(usize, usize, f64)], rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
-        let (index, m) = self.free_index();
-        let k = self.free_matrix(triplets, &index, m)?;
-        let lu = self.factorize(&k)?;
-        let mut b = Mat::<f64>::zeros(m, rhs.len());
+    /// Solves K x = b for several right-hand sides with one factorisation: Cholesky when K
+    /// is symmetric and positive definite (the stable branches without slip; about six
+    /// times cheaper than LU here), else LU with partial pivoting.
+    pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
+        let index = &self.pattern.index;
+        let mut b = Mat::<f64>::zeros(self.pattern.n_free(), rhs.len());
         for (c, col) in rhs.iter().enumerate() {
             for (i, &j) in index.iter().enumerate() {
                 if j != usize::MAX {
@@ -158,7 +265,10 @@ impl Model {
                 }
             }
         }
-        let x = lu.solve(&b);
+        let x = match k.is_symmetric().then(|| self.cholesky(k)).flatten() {
+            Some(llt) => llt.solve(&b),
+            None => self.factorize(k)?.solve(&b),
+        };
         Ok((0..rhs.len())
             .map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect())
             .collect())
@@ -170,33 +280,33 @@ impl Model {
         (self.counts[0].load(Relaxed), self.counts[1].load(Relaxed))
     }
 
-    /// The LU factorisation of `k`, reusing the symbolic factorisation of the previous
-    /// matrix when the sparsity pattern is the same.
-    fn factorize(&self, k: &SparseColMat<usize, f64>) -> Result<Lu<usize, f64>> {
-        let sym = k.symbolic();
-        let mut cached = self.symbolic.lock().unwrap_or_else(|e| e.into_inner());
-        let same = cached.as_ref().is_some_and(|p| p.col_ptr == sym.col_ptr() && p.row_idx == sym.row_idx());
+    /// The LU factorisation of `k`, on the model's symbolic factorisation (made at the first
+    /// call).
+    fn factorize(&self, k: &Stiffness) -> Result<Lu<usize, f64>> {
         use std::sync::atomic::Ordering::Relaxed;
-        self.counts[1].fetch_add(1, Relaxed);
-        if !same {
+        let symbolic = self.pattern.lu.get_or_init(|| {
             self.counts[0].fetch_add(1, Relaxed);
-            let lu = SymbolicLu::try_new(sym).map_err(|e| anyhow!("sparse LU (symbolic): {e:?}"))?;
-            *cached = Some(Pattern { col_ptr: sym.col_ptr().to_vec(), row_idx: sym.row_idx().to_vec(), lu });
-        }
-        let symbolic = cached.as_ref().expect("set above").lu.clone();
-        drop(cached);
-        Lu::try_new_with_symbolic(symbolic, k.as_ref()).map_err(|e| anyhow!("sparse LU: {e:?}"))
+            SymbolicLu::try_new(self.pattern.symbolic.as_ref()).map_err(|e| format!("{e:?}"))
+        });
+        let symbolic = symbolic.clone().map_err(|e| anyhow!("sparse LU (symbolic): {e}"))?;
+        self.counts[1].fetch_add(1, Relaxed);
+        Lu::try_new_with_symbolic(symbolic, k.matrix()).map_err(|e| anyhow!("sparse LU: {e:?}"))
+    }
+
+    /// The Cholesky factorisation of the lower triangle of `k`, if it is positive definite.
+    fn cholesky(&self, k: &Stiffness) -> Option<Llt<usize, f64>> {
+        let symbolic = self
+            .pattern
+            .llt
+            .get_or_init(|| SymbolicLlt::try_new(self.pattern.symbolic.as_ref(), faer::Side::Lower).ok());
+        Llt::try_new_with_symbolic(symbolic.clone()?, k.matrix(), faer::Side::Lower).ok()
     }
 
     /// Whether the free tangent is positive definite (its Cholesky factorisation exists):
     /// the equilibrium is stable under prescribed plate displacement. A sign change of the
     /// tangent's determinant along the path shows as a change of this flag.
-    pub fn is_stable(&self, triplets: &[(usize, usize, f64)]) -> bool {
-        let (index, m) = self.free_index();
-        match self.free_matrix(triplets, &index, m) {
-            Ok(k) => k.sp_cholesky(faer::Side::Lower).is_ok(),
-            Err(_) => false,
-        }
+    pub fn is_stable(&self, k: &Stiffness) -> bool {
+        self.cholesky(k).is_some()
     }
 }
 
@@ -246,6 +356,51 @@ mod tests {
         let (r1, r2) = (reissner_ratio(0.01, 120, 40.0), reissner_ratio(0.005, 200, 60.0));
         assert!((r1 - 1.0).abs() < 0.025 && (r2 - 1.0).abs() < 0.015, "{r1} {r2}");
         assert!((r2 - 1.0).abs() < 0.75 * (r1 - 1.0).abs(), "not converging to the thin limit: {r1} {r2}");
+    }
+
+    #[test]
+    fn cholesky_and_lu_solve_the_same_system_and_slip_takes_lu() {
+        // A pressed state with friction: the tangent is symmetric while every node sticks, so
+        // `solve` takes Cholesky, and LU on the same system agrees to rounding; a slipping
+        // node's entry breaks the symmetry (and `solve` then takes LU).
+        let (e, r) = (1.3, 15.0);
+        let model = Model::new(ShellMesh::hemisphere(r, 1.0, 40, 2, 3.0), e, 0.45, Base::Clamped);
+        let plate = crate::fem::contact::Plate::new(&model.mesh, e, 1000.0).with_friction(0.5);
+        let path = crate::fem::indent::load_path(&model, &plate, e, 0.05 * r, 5, 4);
+        let s = path.last().unwrap();
+        let (_, mut k) = model.assemble(&s.u).unwrap();
+        let rhs: Vec<f64> = (0..model.n_dofs()).map(|i| (i as f64 * 0.37).sin()).collect();
+        assert!(k.is_symmetric() && model.cholesky(&k).is_some());
+        let x = model.solve(&k, &rhs).unwrap();
+        let index = &model.pattern.index;
+        let mut b = Mat::<f64>::zeros(model.pattern.n_free(), 1);
+        for (i, &j) in index.iter().enumerate() {
+            if j != usize::MAX {
+                b[(j, 0)] = rhs[i];
+            }
+        }
+        let y = model.factorize(&k).unwrap().solve(&b);
+        let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (i, &j) in index.iter().enumerate() {
+            if j != usize::MAX {
+                assert!((x[i] - y[(j, 0)]).abs() < 1e-9 * scale, "{i}: {} vs {}", x[i], y[(j, 0)]);
+            } else {
+                assert_eq!(x[i], 0.0);
+            }
+        }
+        // A slip entry (u_r row, u_z column of one node) breaks the symmetry.
+        let a = model.mesh.outer[3];
+        k.push((2 * a, 2 * a + 1, 1e-3));
+        assert!(!k.is_symmetric());
+    }
+
+    #[test]
+    #[should_panic(expected = "outside the model's pattern")]
+    fn an_entry_coupling_two_elements_apart_is_refused() {
+        let model = Model::new(ShellMesh::hemisphere(15.0, 1.0, 40, 2, 3.0), 1.3, 0.45, Base::Clamped);
+        let mut k = model.zero_stiffness();
+        let (a, b) = (model.mesh.outer[0], model.mesh.outer[20]);
+        k.push((2 * a + 1, 2 * b + 1, 1.0));
     }
 
     #[test]
