@@ -144,7 +144,7 @@ impl Adhesion {
                     q[zr(k)] -= w * law.d1 * djac[k];
                     for l in 0..3 {
                         let kzr = -w * law.d1 * n[k] * djac[l];
-                        local[2 * k + 1][2 * l + 1] += w * d2 * n[k] * n[l] * jac;
+                        local[2 * k + 1][2 * l + 1] += w * d2 * jac * (n[k] * n[l]);
                         local[2 * k + 1][2 * l] += kzr;
                         local[2 * l][2 * k + 1] += kzr;
                         local[2 * k][2 * l] += w * law.phi * 2.0 * PI * (n[k] * dn[l] + dn[k] * n[l]);

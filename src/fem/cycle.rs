@@ -12,7 +12,7 @@
 
 use super::arclength::{continue_path, ArcOptions};
 use super::contact::Plate;
-use super::indent::{apex_z, dimple, solve_at, solve_from, Options, Step};
+use super::indent::{apex_z, descend, dimple, solve_at, solve_from, Options, Step};
 use super::stability::{unilaterally_stable, AdhesiveHold};
 use super::system::Model;
 
@@ -111,12 +111,19 @@ fn fresh_stick(model: &Model, u: &[f64]) -> Vec<f64> {
 /// whose own positions then become the anchors (so that it is an equilibrium with friction
 /// too, and the shear builds up again from there).
 fn land(model: &Model, plate: &Plate, e: f64, delta: f64, start: &[f64]) -> Step {
+    land_with(model, plate, e, delta, start, false)
+}
+
+/// `land`; with `descent`, if Newton finds no equilibrium near the guess, the energy is
+/// descended from it instead (`indent::descend`: where a damped jump comes to rest).
+fn land_with(model: &Model, plate: &Plate, e: f64, delta: f64, start: &[f64], descent: bool) -> Step {
     let opt = Options { max_iterations: 60, ..Options::default() };
-    if plate.friction.is_none() {
-        return solve_at(model, plate, e, delta, start, &[], opt);
+    let bare = plate.frictionless();
+    let mut s = solve_at(model, &bare, e, delta, start, &[], opt);
+    if !s.converged && descent {
+        s = descend(model, &bare, e, delta, start, LANDING_DESCENT_ITERATIONS);
     }
-    let s = solve_at(model, &plate.frictionless(), e, delta, start, &[], opt);
-    if !s.converged {
+    if plate.friction.is_none() || !s.converged {
         return s;
     }
     let stick = fresh_stick(model, &s.u);
@@ -187,6 +194,9 @@ fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
     s.iterations = 0;
     Some(s)
 }
+
+/// Shifted-Newton iterations of an energy descent that lands a jump.
+const LANDING_DESCENT_ITERATIONS: usize = 150;
 
 /// How many flattened loading states (nearest in delta first) the snap-back's landing
 /// starts from before it gives up.
@@ -308,22 +318,20 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     // Unloading, warm-started from the loading states once back on the flattened branch.
     // The landing of the snap-back starts from the flattened loading state nearest in delta,
     // or, if Newton finds nothing from there (adhesion makes the basin narrow), from the next
-    // nearest ones.
+    // nearest ones, and at last descends the energy from the nearest.
     let land_flattened = |delta: f64| -> Step {
         let mut near: Vec<&Step> =
             loading.iter().filter(|p| !p.inverted && p.step.converged).map(|p| &p.step).collect();
         near.sort_by(|a, b| (a.delta - delta).abs().total_cmp(&(b.delta - delta).abs()));
         let zero = vec![0.0; model.n_dofs()];
-        let starts = near.iter().take(SNAP_BACK_STARTS).map(|s| &s.u).chain(near.is_empty().then_some(&zero));
-        let mut last = None;
-        for start in starts {
-            let s = land(model, plate, e, delta, start);
-            if s.converged && !is_inverted(model, &s) {
-                return s;
-            }
-            last = Some(s);
-        }
-        last.expect("at least one start")
+        let starts: Vec<&Vec<f64>> =
+            near.iter().take(SNAP_BACK_STARTS).map(|s| &s.u).chain(near.is_empty().then_some(&zero)).collect();
+        let landed = |s: &Step| s.converged && !is_inverted(model, s);
+        starts
+            .iter()
+            .map(|start| land(model, plate, e, delta, start))
+            .find(landed)
+            .unwrap_or_else(|| land_with(model, plate, e, delta, starts[0], true))
     };
     let mut unloading = vec![CyclePoint { step: cur.clone(), leg: Leg::Unloading, inverted }];
     if cycle.complete && inverted {

@@ -165,6 +165,91 @@ pub fn solve_from(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step,
     solve_at(model, plate, e, delta, &from.u, &from.contact.stick, opt)
 }
 
+/// Energy descent to a stable state at plate displacement `delta` from the guess `u0`, for
+/// a plate whose interface forces have a potential (no friction). The total potential
+/// Pi = strain energy + penalty and adhesive energy (`Plate::energy`) is lowered by shifted
+/// Newton steps (K + sigma I) du = -r with backtracking on Pi: sigma (relative to K's mean
+/// diagonal) is raised tenfold until the shifted tangent is positive definite and a step
+/// along it lowers Pi, and lowered tenfold after each success, to zero, so that near a
+/// minimum the steps are Newton's and converge quadratically. This is where a quasi-statically damped shell that
+/// has lost stability comes to rest; plain Newton from a guess converges to whichever
+/// equilibrium is near, stable or not, or to none. Converged means a residual below
+/// tolerance at a positive-definite tangent (a stable state); otherwise the last iterate is
+/// returned as not converged.
+pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max_iterations: usize) -> Step {
+    assert!(plate.friction.is_none(), "energy descent needs a potential: no friction");
+    const SHIFT_MIN: f64 = 1e-8;
+    const SHIFT_MAX: f64 = 1e4;
+    const BACKTRACKS: usize = 12;
+    let scale = e * model.mesh.thickness.powi(2);
+    let tol = Options::default().tol * scale;
+    let z_plate = apex_z(model) - delta;
+    let potential = |u: &[f64]| Some(model.strain_energy(u)? + plate.energy(&model.mesh, u, z_plate));
+    let state = |u: &[f64]| Some((evaluate(model, plate, delta, u, &[])?, potential(u)?));
+    let mut u = u0.to_vec();
+    let Some((mut cur, mut pi)) = state(&u) else {
+        return Step {
+            delta,
+            u,
+            contact: ContactState::default(),
+            iterations: 0,
+            residual: f64::INFINITY,
+            converged: false,
+            stable: false,
+        };
+    };
+    let mut shift = 0.0;
+    let mut iterations = 0;
+    let mut stable = false;
+    let raise = |s: f64| if s == 0.0 { SHIFT_MIN } else { 10.0 * s };
+    while iterations < max_iterations {
+        stable = model.is_stable(&cur.tangent);
+        if cur.norm <= tol && stable {
+            break;
+        }
+        iterations += 1;
+        let d0 = cur.tangent.mean_diagonal();
+        let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
+        let mut du = None;
+        while du.is_none() && shift <= SHIFT_MAX {
+            let k = if shift > 0.0 { cur.tangent.shifted(shift * d0) } else { cur.tangent.clone() };
+            du = model.solve_definite(&k, &rhs);
+            if du.is_none() {
+                shift = raise(shift);
+            }
+        }
+        let Some(du) = du else { break };
+        // Backtracking on Pi along the step (the penalty makes Pi stiff where the contact set
+        // changes); at rounding level of Pi (near the minimum) a lower residual will do.
+        let mut t = 1.0;
+        let mut accepted = None;
+        for _ in 0..BACKTRACKS {
+            let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + t * b).collect();
+            if let Some((ev, p)) = state(&trial) {
+                if p < pi || (p <= pi + 1e-13 * pi.abs() && ev.norm < cur.norm) {
+                    accepted = Some((trial, ev, p));
+                    break;
+                }
+            }
+            t *= 0.5;
+        }
+        match accepted {
+            Some(next) => {
+                (u, cur, pi) = next;
+                shift = if shift <= SHIFT_MIN { 0.0 } else { 0.1 * shift };
+            }
+            None => {
+                shift = raise(shift);
+                if shift > SHIFT_MAX {
+                    break;
+                }
+            }
+        }
+    }
+    let converged = cur.norm <= tol && stable;
+    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable: converged }
+}
+
 /// Loads from delta = 0 to `delta_max` in `steps` equal steps (halved on failure, at most
 /// `max_cuts` times per step). Returns the converged states; the last entry is the failed
 /// one if the path stopped early.
@@ -242,6 +327,36 @@ mod tests {
         assert!((plate_ratio - 1.0).abs() < 0.08 && (mid_ratio - 1.0).abs() < 0.08, "{plate_ratio} {mid_ratio}");
         assert!(plate_ratio < mid_ratio);
         assert!(last.contact.max_penetration < 2e-4 * last.delta);
+    }
+
+    #[test]
+    fn energy_descent_comes_to_rest_in_the_basin_it_starts_in() {
+        // Thesis geometry. At delta/R = 0.1 a disturbed flattened state descends back to it;
+        // at delta/R = 0.25, where the flattened and the inverted states are both minima (see
+        // the next test), the dimple descends to the inverted state (both equal to Newton's
+        // to 1e-6); from the undeformed shell 3.75 mm into the plate the descent ends in a
+        // stable state, with less energy than it started from.
+        let (e, nu, r, h) = (1.3, 0.45, 15.0, 1.0);
+        let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, nu, Base::Clamped);
+        let plate = Plate::new(&model.mesh, e, 1000.0);
+        let flat = load_path(&model, &plate, e, 0.25 * r, 10, 6).pop().unwrap();
+        let newton = Options { max_iterations: 60, ..Options::default() };
+        let a = 0.8 * flat.contact.radius;
+        let dimpled = |depth: f64| dimple(&model, &flat.u, a, depth * a * a / (r + 0.5 * h));
+        let inverted = solve_at(&model, &plate, e, flat.delta, &dimpled(1.0), &[], newton);
+        assert!(inverted.converged);
+        let close = |x: &Step, y: &Step| (x.contact.force / y.contact.force - 1.0).abs() < 1e-6;
+        let early = load_path(&model, &plate, e, 0.1 * r, 4, 6).pop().unwrap();
+        let disturbed: Vec<f64> = early.u.iter().map(|v| 1.01 * v).collect();
+        let back = descend(&model, &plate, e, early.delta, &disturbed, 100);
+        assert!(back.converged && close(&back, &early), "{} vs {}", back.contact.force, early.contact.force);
+        let down = descend(&model, &plate, e, flat.delta, &dimpled(1.0), 100);
+        assert!(down.converged && close(&down, &inverted), "{} vs {}", down.contact.force, inverted.contact.force);
+        let deep = vec![0.0; model.n_dofs()];
+        let rest = descend(&model, &plate, e, flat.delta, &deep, 300);
+        let z_plate = apex_z(&model) - flat.delta;
+        let pi = |u: &[f64]| model.strain_energy(u).unwrap() + plate.energy(&model.mesh, u, z_plate);
+        assert!(rest.converged && rest.stable && pi(&rest.u) < pi(&deep), "{} iterations", rest.iterations);
     }
 
     #[test]

@@ -69,6 +69,8 @@ struct Pattern {
     slots: Vec<[u32; 256]>,
     /// The slot of the transposed entry of each slot (the pattern is symmetric).
     transposed: Vec<u32>,
+    /// The slot of each free dof's diagonal entry.
+    diagonal: Vec<u32>,
     lu: OnceLock<std::result::Result<SymbolicLu<usize>, String>>,
     llt: OnceLock<Option<SymbolicLlt<usize>>>,
 }
@@ -128,8 +130,14 @@ impl Pattern {
                 transposed[k] = (col_ptr[i] + rows.binary_search(&j).expect("the pattern is symmetric")) as u32;
             }
         }
+        let diagonal = (0..m)
+            .map(|j| {
+                let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
+                (col_ptr[j] + rows.binary_search(&j).expect("every free dof has a diagonal entry")) as u32
+            })
+            .collect();
         let symbolic = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
-        Pattern { index, symbolic, slots, transposed, lu: OnceLock::new(), llt: OnceLock::new() }
+        Pattern { index, symbolic, slots, transposed, diagonal, lu: OnceLock::new(), llt: OnceLock::new() }
     }
 
     fn n_free(&self) -> usize {
@@ -172,9 +180,27 @@ impl Stiffness {
         SparseColMatRef::new(self.pattern.symbolic.as_ref(), &self.values)
     }
 
-    /// Exactly symmetric (no slipping friction node, whose tangent is not).
+    /// The mean of the free diagonal's magnitudes (a stiffness scale).
+    pub fn mean_diagonal(&self) -> f64 {
+        let d = &self.pattern.diagonal;
+        d.iter().map(|&k| self.values[k as usize].abs()).sum::<f64>() / d.len().max(1) as f64
+    }
+
+    /// K + shift I (on the free dofs).
+    pub fn shifted(&self, shift: f64) -> Stiffness {
+        let mut k = self.clone();
+        for &slot in &self.pattern.diagonal {
+            k.values[slot as usize] += shift;
+        }
+        k
+    }
+
+    /// Symmetric to rounding (no slipping friction node, whose tangent is not).
     fn is_symmetric(&self) -> bool {
-        self.values.iter().zip(&self.pattern.transposed).all(|(&v, &t)| v == self.values[t as usize])
+        self.values.iter().zip(&self.pattern.transposed).all(|(&v, &t)| {
+            let w = self.values[t as usize];
+            (v - w).abs() <= 1e-12 * v.abs().max(w.abs())
+        })
     }
 }
 
@@ -256,22 +282,40 @@ impl Model {
     /// is symmetric and positive definite (the stable branches without slip; about six
     /// times cheaper than LU here), else LU with partial pivoting.
     pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
-        let index = &self.pattern.index;
+        let b = self.to_free(rhs);
+        let x = match k.is_symmetric().then(|| self.cholesky(k)).flatten() {
+            Some(llt) => llt.solve(&b),
+            None => self.factorize(k)?.solve(&b),
+        };
+        Ok(self.from_free(&x))
+    }
+
+    /// The free dofs of full-numbering vectors, as the columns of a matrix.
+    fn to_free(&self, rhs: &[&[f64]]) -> Mat<f64> {
         let mut b = Mat::<f64>::zeros(self.pattern.n_free(), rhs.len());
         for (c, col) in rhs.iter().enumerate() {
-            for (i, &j) in index.iter().enumerate() {
+            for (i, &j) in self.pattern.index.iter().enumerate() {
                 if j != usize::MAX {
                     b[(j, c)] = col[i];
                 }
             }
         }
-        let x = match k.is_symmetric().then(|| self.cholesky(k)).flatten() {
-            Some(llt) => llt.solve(&b),
-            None => self.factorize(k)?.solve(&b),
-        };
-        Ok((0..rhs.len())
-            .map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect())
-            .collect())
+        b
+    }
+
+    /// The columns of `x` (free dofs) as full-numbering vectors, zero on the fixed dofs.
+    fn from_free(&self, x: &Mat<f64>) -> Vec<Vec<f64>> {
+        let index = &self.pattern.index;
+        (0..x.ncols()).map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect()).collect()
+    }
+
+    /// Solves K x = b by Cholesky if K is symmetric positive definite; None otherwise.
+    pub fn solve_definite(&self, k: &Stiffness, rhs: &[f64]) -> Option<Vec<f64>> {
+        if !k.is_symmetric() {
+            return None;
+        }
+        let x = self.cholesky(k)?.solve(&self.to_free(&[rhs]));
+        self.from_free(&x).pop()
     }
 
     /// (symbolic, numeric) LU factorisations made so far.
@@ -373,12 +417,7 @@ mod tests {
         assert!(k.is_symmetric() && model.cholesky(&k).is_some());
         let x = model.solve(&k, &rhs).unwrap();
         let index = &model.pattern.index;
-        let mut b = Mat::<f64>::zeros(model.pattern.n_free(), 1);
-        for (i, &j) in index.iter().enumerate() {
-            if j != usize::MAX {
-                b[(j, 0)] = rhs[i];
-            }
-        }
+        let b = model.to_free(&[&rhs]);
         let y = model.factorize(&k).unwrap().solve(&b);
         let scale = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (i, &j) in index.iter().enumerate() {
