@@ -287,7 +287,7 @@ impl Model {
             Some(llt) => llt.solve(&b),
             None => self.factorize(k)?.solve(&b),
         };
-        Ok(self.from_free(&x))
+        Ok(self.full_vectors(&x))
     }
 
     /// The free dofs of full-numbering vectors, as the columns of a matrix.
@@ -304,7 +304,7 @@ impl Model {
     }
 
     /// The columns of `x` (free dofs) as full-numbering vectors, zero on the fixed dofs.
-    fn from_free(&self, x: &Mat<f64>) -> Vec<Vec<f64>> {
+    fn full_vectors(&self, x: &Mat<f64>) -> Vec<Vec<f64>> {
         let index = &self.pattern.index;
         (0..x.ncols()).map(|c| index.iter().map(|&j| if j == usize::MAX { 0.0 } else { x[(j, c)] }).collect()).collect()
     }
@@ -315,7 +315,7 @@ impl Model {
             return None;
         }
         let x = self.cholesky(k)?.solve(&self.to_free(&[rhs]));
-        self.from_free(&x).pop()
+        self.full_vectors(&x).pop()
     }
 
     /// (symbolic, numeric) LU factorisations made so far.
