@@ -113,6 +113,7 @@ fn the_buckling_map_stages_reach_their_tables() {
     // 0.0104]. The bounds cover that window of about 1.5 and no factor of 2.
     assert!(lo < mid && mid < hi && hi / lo - 1.0 <= 0.3 && lo > 0.006 && hi < 0.0125, "{lo} {mid} {hi}");
     assert_eq!(column(&g, "found")[0], 1.0);
+    assert!((column(&g, "error_estimate")[0] - 0.5 * (hi - lo)).abs() < 1e-12 * hi);
     let r = column(&g, "r_over_R")[0];
     assert!(r > 0.3 && r < 0.9 && (column(&g, "eq3_7_over_Eh")[0] - r.powi(4)).abs() < 1e-12);
     let m = s.table("map");
@@ -154,4 +155,9 @@ fn the_default_mesh_gives_the_converged_adhesive_snap() {
     let (f, d) = (column(&t, "F_buckling_bar")[0], column(&t, "delta_buckling_over_R")[0]);
     assert!((f / 7.873 - 1.0).abs() < 0.01, "F_buckling_bar {f}");
     assert!((d - 0.1885).abs() < 0.002, "delta_b/R {d}");
+    // The error estimates cover the actual error against the reference without being
+    // vacuous: bisection bracket plus the default mesh's 0.5 %, of order 1 %, not 10 %.
+    let (fe, de) = (column(&t, "F_buckling_error_bar")[0], column(&t, "delta_buckling_error_over_R")[0]);
+    assert!((f - 7.873).abs() <= fe && fe < 0.02 * f, "F {f} +- {fe}");
+    assert!(de > 0.0 && de <= 0.35 / 35.0 / 32.0 * 1.0001, "delta bracket {de}");
 }

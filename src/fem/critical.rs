@@ -158,6 +158,8 @@ mod tests {
                 buckling: (x < 0.0123).then_some(Jump {
                     delta: 0.0,
                     force_before: 1.0,
+                    delta_stable: 0.0,
+                    force_unstable: 1.0,
                     force_after: 0.5,
                     radius_before: 0.4,
                     pull_before: 0.0,

@@ -60,6 +60,12 @@ pub struct CyclePoint {
 pub struct Jump {
     pub delta: f64,
     pub force_before: f64,
+    /// The bracket of the event: the last state before it (delta_stable, force_before) and
+    /// the first after it, still on the old branch (delta, force_unstable). The snap-through
+    /// lies between (bisected to delta - delta_stable); the snap-back is a limit point found
+    /// by arc length, where both are the same state.
+    pub delta_stable: f64,
+    pub force_unstable: f64,
     pub force_after: f64,
     /// Outermost contact radius (current) of the state before the jump.
     pub radius_before: f64,
@@ -274,6 +280,8 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                 cycle.buckling = Some(Jump {
                     delta: hi.delta,
                     force_before: lo.contact.force,
+                    delta_stable: lo.delta,
+                    force_unstable: hi.contact.force,
                     force_after: f64::NAN,
                     radius_before: lo.contact.radius,
                     pull_before: lo.contact.adhesive,
@@ -380,6 +388,8 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             cycle.snap_back = Some(Jump {
                 delta: last.delta,
                 force_before: last.contact.force,
+                delta_stable: last.delta,
+                force_unstable: last.contact.force,
                 force_after: back.contact.force,
                 radius_before: last.contact.radius,
                 pull_before: last.contact.adhesive,

@@ -40,6 +40,13 @@ pub struct ShellMesh {
 /// 15.09 at 480).
 pub const MERIDIAN_ELEMENTS_PER_G0: f64 = 1.5;
 
+/// Relative error of F_buckling on the default mesh (`meridian_elements`, 2 elements
+/// through the thickness), from the resolution study of `pipelines/bench.yaml` (largest
+/// error 0.47 % over its four points against 480 x 4 elements, 70 load steps, 8
+/// bisections), declared as 0.5 %. With friction the error is larger (mu = 1: 1.3 % at 240,
+/// 0.07 % at 320 elements against 480), which this figure, from mu <= 0.5, does not cover.
+pub const DEFAULT_MESH_REL_ERROR: f64 = 0.005;
+
 /// The default number of meridian elements for a shell of inner radius `radius` and
 /// `thickness` with the Lennard-Jones range `g0` (`MERIDIAN_ELEMENTS_PER_G0`).
 pub fn meridian_elements(radius: f64, thickness: f64, g0: f64) -> usize {

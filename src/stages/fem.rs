@@ -5,9 +5,9 @@
 
 use super::{check, finite};
 use crate::fem::contact::Plate;
-use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Leg};
+use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Jump, Leg};
 use crate::fem::indent::Step;
-use crate::fem::mesh::ShellMesh;
+use crate::fem::mesh::{ShellMesh, DEFAULT_MESH_REL_ERROR};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -220,7 +220,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 8;
+    const VERSION: u32 = 9;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -246,6 +246,8 @@ impl Kind for FemIndent {
             rows.push(("unstable", "unstable", s));
         }
         let f_bar = sh.R / (sh.E * sh.h.powi(3));
+        let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
+        let mesh_error = if default_mesh { DEFAULT_MESH_REL_ERROR } else { 0.0 };
         let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, _, s)| finite(f(s))).collect::<Vec<f64>>();
         let n = rows.len();
         let leg_id = |l: &str| match l {
@@ -261,6 +263,8 @@ impl Kind for FemIndent {
             .with_f64("mu", vec![p.mu; n])
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
+            // The resolution error of the default mesh (0 for others: not measured).
+            .with_f64("F_error_bar", col(&|s| mesh_error * (s.contact.force * f_bar).abs()))
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
             .with_f64(
                 "slip_fraction",
@@ -280,6 +284,10 @@ impl Kind for FemIndent {
             // The cycle's summary, repeated on every row (0 where there is no such event).
             .with("buckled", ColumnData::Bool(vec![c.buckling.is_some(); n]))
             .with_f64("F_buckling_bar", vec![finite(c.buckling.map_or(0.0, |b| b.force_before * f_bar)); n])
+            .with_f64(
+                "F_buckling_error_bar",
+                vec![finite(c.buckling.map_or(0.0, |b| snap_force_error(&b, default_mesh) * f_bar)); n],
+            )
             .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
             .with_f64("W_bar", vec![if c.complete { finite(c.dissipated() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n])
@@ -287,6 +295,14 @@ impl Kind for FemIndent {
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }
+}
+
+/// Error estimate of a snap-through force: the bisection's bracket (the force rises from
+/// the last stable state to the first unstable one) plus, on the default mesh, its measured
+/// resolution error (`fem::mesh::DEFAULT_MESH_REL_ERROR`; other meshes: the bracket only).
+pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool) -> f64 {
+    let mesh = if default_mesh { DEFAULT_MESH_REL_ERROR } else { 0.0 };
+    (j.force_unstable - j.force_before).abs() + mesh * j.force_before.abs()
 }
 
 /// One state to draw (thesis Fig. 3.3: I Hertzian, II intermediate, III post-buckling).

@@ -7,6 +7,7 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
+use super::fem::snap_force_error;
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::critical::{bracket, probe};
@@ -179,7 +180,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 6;
+    const VERSION: u32 = 7;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -213,7 +214,14 @@ impl Kind for FemBuckling {
             .with_f64("mu", vec![p.mu])
             .with("buckled", ColumnData::Bool(vec![b.is_some()]))
             .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
+            .with_f64(
+                "F_buckling_error_bar",
+                vec![finite(
+                    b.map_or(0.0, |j| snap_force_error(&j, m.n_meridian.is_none() && m.n_thickness == 2) * fb),
+                )],
+            )
             .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
+            .with_f64("delta_buckling_error_over_R", vec![finite(b.map_or(0.0, |j| (j.delta - j.delta_stable) / m.R))])
             .with_f64("r_over_R", vec![finite(b.map_or(0.0, |j| j.radius_before / m.R))])
             .with_f64("W_bar", vec![finite(w / (m.E * h.powi(3)))])
             .with_f64("W_Nmm", vec![finite(w)])
@@ -266,7 +274,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 6;
+    const VERSION: u32 = 7;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
@@ -310,6 +318,7 @@ impl Kind for FemGammaC {
             .with_f64("gamma_c_over_Eh", vec![finite(mid)])
             .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
             .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])
+            .with_f64("error_estimate", vec![finite(0.5 * (b.hi - b.lo) / scale)])
             .with_f64("rel_tol", vec![p.rel_tol])
             .with("found", ColumnData::Bool(vec![b.found]))
             .with("reliable", ColumnData::Bool(vec![b.reliable()]))
