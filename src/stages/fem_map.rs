@@ -274,7 +274,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 8;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
@@ -318,7 +318,9 @@ impl Kind for FemGammaC {
             .with_f64("gamma_c_over_Eh", vec![finite(mid)])
             .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
             .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])
-            .with_f64("error_estimate", vec![finite(0.5 * (b.hi - b.lo) / scale)])
+            // The half-bracket; not found, gamma_c_over_Eh is only the bound gamma_max, and
+            // the estimate is the value itself (no confidence).
+            .with_f64("error_estimate", vec![finite(if b.found { 0.5 * (b.hi - b.lo) / scale } else { mid })])
             .with_f64("rel_tol", vec![p.rel_tol])
             .with("found", ColumnData::Bool(vec![b.found]))
             .with("reliable", ColumnData::Bool(vec![b.reliable()]))
