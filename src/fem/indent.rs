@@ -24,6 +24,22 @@ pub struct Step {
     pub stable: bool,
 }
 
+impl Step {
+    /// A state at `delta` that could not even be evaluated (an inverted element): not
+    /// converged, infinite residual.
+    fn failed(delta: f64, u: Vec<f64>) -> Step {
+        Step {
+            delta,
+            u,
+            contact: ContactState::default(),
+            iterations: 0,
+            residual: f64::INFINITY,
+            converged: false,
+            stable: false,
+        }
+    }
+}
+
 /// Newton options.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
@@ -94,15 +110,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     let mut u = u0.to_vec();
     let residual_of = |u: &[f64]| evaluate(model, plate, delta, u, stick);
     let Some(mut cur) = residual_of(&u) else {
-        return Step {
-            delta,
-            u,
-            contact: ContactState::default(),
-            iterations: 0,
-            residual: f64::INFINITY,
-            converged: false,
-            stable: false,
-        };
+        return Step::failed(delta, u);
     };
     // Backtracking on the residual norm (and on inverted elements) along `du`. If no step
     // down to 1/128 lowers it, the longest admissible step is taken: at the kinks of the
@@ -188,15 +196,7 @@ pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max
     let state = |u: &[f64]| Some((evaluate(model, plate, delta, u, &[])?, potential(u)?));
     let mut u = u0.to_vec();
     let Some((mut cur, mut pi)) = state(&u) else {
-        return Step {
-            delta,
-            u,
-            contact: ContactState::default(),
-            iterations: 0,
-            residual: f64::INFINITY,
-            converged: false,
-            stable: false,
-        };
+        return Step::failed(delta, u);
     };
     let mut shift = 0.0;
     let mut iterations = 0;
