@@ -105,7 +105,9 @@ fn outputs_change_only_with_a_version_bump() {
         .with_f64("gamma_lo_over_Eh", vec![0.009, 0.018, 0.0045, 0.009])
         .with_f64("gamma_hi_over_Eh", vec![0.011, 0.022, 0.0055, 0.011])
         .with_f64("eq3_7_over_Eh", vec![0.03, 0.04, 0.0, 0.0])
-        .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]));
+        .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]))
+        .with("found", repro::pipeline::table::ColumnData::Bool(vec![true, true, true, true]))
+        .with_f64("error_estimate", vec![0.001, 0.002, 0.0005, 0.001]);
     // Two solver configurations and a reference for bench.pareto.
     let timed = |v: [f64; 2], t: f64| {
         Table::new().with_f64("x", vec![1.0, 2.0]).with_f64("v", v.to_vec()).with_f64("wall_time_s", vec![t, t])

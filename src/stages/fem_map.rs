@@ -446,7 +446,7 @@ pub struct FemGammaCMap;
 
 impl Kind for FemGammaCMap {
     const NAME: &'static str = "fem.gamma_c_map";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str =
         "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
     type Params = MapParams;
@@ -462,7 +462,7 @@ impl Kind for FemGammaCMap {
     fn run(p: &MapParams, inputs: &Inputs) -> Result<Output> {
         let t = inputs.table(&p.gamma_c)?;
         let col = |name: &str| t.f64_column(name);
-        let (h, mu, g, lo, hi, eq, ok) = (
+        let (h, mu, g, lo, hi, eq, ok, found, err) = (
             col("h_over_R")?,
             col("mu")?,
             col("gamma_c_over_Eh")?,
@@ -470,14 +470,17 @@ impl Kind for FemGammaCMap {
             col("gamma_hi_over_Eh")?,
             col("eq3_7_over_Eh")?,
             col("reliable")?,
+            col("found")?,
+            col("error_estimate")?,
         );
-        let mut rows: Vec<[f64; 7]> = (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i]]).collect();
+        let mut rows: Vec<[f64; 9]> =
+            (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i], found[i], err[i]]).collect();
         if let Some(l) = &p.limit {
             let lt = inputs.table(l)?;
             let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
             for i in 0..lmu.len() {
                 if found[i] > 0.5 {
-                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0]);
+                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0]);
                 }
             }
         }
@@ -492,7 +495,9 @@ impl Kind for FemGammaCMap {
             .with_f64("gamma_c_over_Eh", c(2))
             .with_f64("gamma_lo_over_Eh", c(3))
             .with_f64("gamma_hi_over_Eh", c(4))
+            .with_f64("error_estimate", c(8))
             .with_f64("eq3_7_over_Eh", c(5))
+            .with("found", ColumnData::Bool(rows.iter().map(|r| r[7] > 0.5).collect()))
             .with("reliable", ColumnData::Bool(rows.iter().map(|r| r[6] > 0.5).collect()))
             .into())
     }
