@@ -200,25 +200,26 @@ pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max
     };
     let mut shift = 0.0;
     let mut iterations = 0;
-    let mut stable = false;
     let raise = |s: f64| if s == 0.0 { SHIFT_MIN } else { 10.0 * s };
-    while iterations < max_iterations {
-        stable = model.is_stable(&cur.tangent);
-        if cur.norm <= tol && stable {
-            break;
+    let stable = loop {
+        let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
+        // The unshifted Newton step exists (by Cholesky) exactly when the state is stable.
+        let mut newton = model.solve_definite(&cur.tangent, &rhs);
+        let stable = newton.is_some();
+        if (cur.norm <= tol && stable) || iterations >= max_iterations {
+            break stable;
         }
         iterations += 1;
         let d0 = cur.tangent.mean_diagonal();
-        let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
         let mut du = None;
         while du.is_none() && shift <= SHIFT_MAX {
-            let k = if shift > 0.0 { cur.tangent.shifted(shift * d0) } else { cur.tangent.clone() };
-            du = model.solve_definite(&k, &rhs);
+            du =
+                if shift == 0.0 { newton.take() } else { model.solve_definite(&cur.tangent.shifted(shift * d0), &rhs) };
             if du.is_none() {
                 shift = raise(shift);
             }
         }
-        let Some(du) = du else { break };
+        let Some(du) = du else { break stable };
         // Backtracking on Pi along the step (the penalty makes Pi stiff where the contact set
         // changes); at rounding level of Pi (near the minimum) a lower residual will do.
         let mut t = 1.0;
@@ -241,11 +242,11 @@ pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max
             None => {
                 shift = raise(shift);
                 if shift > SHIFT_MAX {
-                    break;
+                    break stable;
                 }
             }
         }
-    }
+    };
     let converged = cur.norm <= tol && stable;
     Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable: converged }
 }

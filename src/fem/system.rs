@@ -1,7 +1,8 @@
 //! Global equilibrium of the axisymmetric shell model: assembly of the element forces and
 //! tangents (rayon over elements), the supports (axis, clamped or roller base), and the
-//! sparse direct solve of the tangent system (faer's sparse LU on a pattern built once per
-//! model, into which the elements' blocks are added through precomputed slots).
+//! sparse direct solve of the tangent system on a pattern built once per model, into which
+//! the elements' blocks are added through precomputed slots (faer's sparse Cholesky when the
+//! tangent is symmetric positive definite, its sparse LU otherwise).
 //!
 //! Unknowns: nodal displacements (u_r, u_z), dof 2a and 2a + 1 of node a, in the units of the
 //! mesh (lengths) and of E (stresses); forces are then in E x length^2.
@@ -113,37 +114,33 @@ impl Pattern {
             col_ptr.push(row_idx.len());
         }
         assert!(row_idx.len() < u32::MAX as usize, "tangent pattern too large");
-        let slot_of = |i: usize, j: usize| -> u32 {
-            let (fi, fj) = (index[i], index[j]);
-            if fi == usize::MAX || fj == usize::MAX {
-                return u32::MAX;
-            }
-            let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
-            (col_ptr[fj] + rows.binary_search(&fi).expect("an element's entry is in the pattern")) as u32
-        };
+        let symbolic = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
+        // Every entry looked up below lies in the pattern by construction.
+        let at = |row: usize, col: usize| position(&symbolic, row, col).expect("in the pattern") as u32;
         let slots = mesh
             .elements
             .iter()
             .map(|el| {
                 let dofs = local_dofs(el);
-                std::array::from_fn(|qr| slot_of(dofs[qr / 16], dofs[qr % 16]))
+                std::array::from_fn(|qr| {
+                    let (i, j) = (index[dofs[qr / 16]], index[dofs[qr % 16]]);
+                    if i == usize::MAX || j == usize::MAX {
+                        u32::MAX
+                    } else {
+                        at(i, j)
+                    }
+                })
             })
             .collect();
-        let mut transposed = vec![0u32; row_idx.len()];
+        let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+        // Entry (i, j) of column j has its transpose at row j of column i.
+        let mut transposed = Vec::with_capacity(row_idx.len());
         for j in 0..m {
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let i = row_idx[k];
-                let rows = &row_idx[col_ptr[i]..col_ptr[i + 1]];
-                transposed[k] = (col_ptr[i] + rows.binary_search(&j).expect("the pattern is symmetric")) as u32;
+            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+                transposed.push(at(j, i));
             }
         }
-        let diagonal = (0..m)
-            .map(|j| {
-                let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
-                (col_ptr[j] + rows.binary_search(&j).expect("every free dof has a diagonal entry")) as u32
-            })
-            .collect();
-        let symbolic = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
+        let diagonal = (0..m).map(|j| at(j, j)).collect();
         Pattern { index, symbolic, slots, transposed, diagonal, lu: OnceLock::new(), llt: OnceLock::new() }
     }
 
@@ -157,13 +154,17 @@ impl Pattern {
         if fi == usize::MAX || fj == usize::MAX {
             return None;
         }
-        let (col_ptr, row_idx) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
-        let rows = &row_idx[col_ptr[fj]..col_ptr[fj + 1]];
-        let k = rows.binary_search(&fi).unwrap_or_else(|_| {
+        Some(position(&self.symbolic, fi, fj).unwrap_or_else(|| {
             panic!("tangent entry ({i}, {j}) couples dofs of no common element: outside the model's pattern")
-        });
-        Some(col_ptr[fj] + k)
+        }))
     }
+}
+
+/// The value slot of entry (row, col) of a pattern (rows sorted in each column), if present.
+fn position(pattern: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> Option<usize> {
+    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+    let rows = &row_idx[col_ptr[col]..col_ptr[col + 1]];
+    rows.binary_search(&row).ok().map(|k| col_ptr[col] + k)
 }
 
 /// A tangent matrix of a model: the values of its free-free block on the model's pattern
@@ -312,7 +313,7 @@ impl Model {
     /// times cheaper than LU here), else LU with partial pivoting.
     pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
         let b = self.to_free(rhs);
-        let x = match k.is_symmetric().then(|| self.cholesky(k)).flatten() {
+        let x = match self.definite(k) {
             Some(llt) => llt.solve(&b),
             None => self.factorize(k)?.solve(&b),
         };
@@ -340,10 +341,7 @@ impl Model {
 
     /// Solves K x = b by Cholesky if K is symmetric positive definite; None otherwise.
     pub fn solve_definite(&self, k: &Stiffness, rhs: &[f64]) -> Option<Vec<f64>> {
-        if !k.is_symmetric() {
-            return None;
-        }
-        let x = self.cholesky(k)?.solve(&self.to_free(&[rhs]));
+        let x = self.definite(k)?.solve(&self.to_free(&[rhs]));
         self.full_vectors(&x).pop()
     }
 
@@ -364,6 +362,16 @@ impl Model {
         let symbolic = symbolic.clone().map_err(|e| anyhow!("sparse LU (symbolic): {e}"))?;
         self.counts[1].fetch_add(1, Relaxed);
         Lu::try_new_with_symbolic(symbolic, k.matrix()).map_err(|e| anyhow!("sparse LU: {e:?}"))
+    }
+
+    /// The Cholesky factorisation of `k` if it is symmetric (to rounding) and positive
+    /// definite.
+    fn definite(&self, k: &Stiffness) -> Option<Llt<usize, f64>> {
+        if k.is_symmetric() {
+            self.cholesky(k)
+        } else {
+            None
+        }
     }
 
     /// The Cholesky factorisation of the lower triangle of `k`, if it is positive definite.
