@@ -17,6 +17,8 @@ pub enum Style {
     #[default]
     Line,
     Dashed,
+    /// Short dashes (e.g. states past a stability test that the model still holds).
+    Dotted,
     Points,
     /// A line through markers at the data points.
     LinePoints,
@@ -56,13 +58,18 @@ pub struct DataLayer {
     /// Keep only rows where each named column equals the given value.
     #[serde(default)]
     pub filter: BTreeMap<String, f64>,
+    /// Break a curve's line where rows of its group are left out by `filter` (default:
+    /// the line joins the kept rows across them).
+    #[serde(default)]
+    pub gaps: bool,
     /// Scale the y values by this factor.
     #[serde(default = "one")]
     pub y_scale: f64,
-    /// Palette index (0 black, 1 blue, 2 red, 3 green, 4 purple, 5 orange, ...) of this
-    /// layer's first curve; its other curves take the next colours. Default: continue the
-    /// palette after the previous curves. Give two layers the same `color` to pair their
-    /// curves (e.g. +W solid and -W dashed of the same lambda).
+    /// Palette index (0 black, 1 blue, 2 red, 3 green, 4 purple, 5 orange, ...) of the
+    /// table's first group; the k-th group (in table order, whether `filter` keeps it or not)
+    /// takes the k-th next colour. Default: continue the palette after the previous curves.
+    /// Give two layers the same `color` to pair their curves (e.g. +W solid and -W dashed of
+    /// the same lambda).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub color: Option<usize>,
 }
@@ -162,7 +169,13 @@ struct Series {
     x_name: String,
     y_name: String,
     points: Vec<(f64, f64)>,
+    /// Indices of `points` before which the line is broken.
+    breaks: Vec<usize>,
 }
+
+/// One group's curve while a layer's rows are read: its first row, its points, where its
+/// line breaks, and whether rows were left out since its last point.
+type Curve = (usize, Vec<(f64, f64)>, Vec<usize>, bool);
 
 /// Curves of one data layer, in the order their group values first appear.
 fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
@@ -181,23 +194,39 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
         None => None,
     };
     let mut order: Vec<String> = Vec::new();
-    let mut groups: BTreeMap<String, (usize, Vec<(f64, f64)>)> = BTreeMap::new();
+    let mut groups: BTreeMap<String, Curve> = BTreeMap::new();
     for row in 0..t.n_rows() {
+        let gkey = group.map(|g| g.display_at(row)).unwrap_or_default();
         if !keep[row] {
+            if let Some(g) = groups.get_mut(&gkey) {
+                g.3 = layer.gaps;
+            }
             continue;
         }
-        let gkey = group.map(|g| g.display_at(row)).unwrap_or_default();
         if !groups.contains_key(&gkey) {
             order.push(gkey.clone());
-            groups.insert(gkey.clone(), (row, Vec::new()));
+            groups.insert(gkey.clone(), (row, Vec::new(), Vec::new(), false));
         }
-        groups.get_mut(&gkey).unwrap().1.push((xs[row], ys[row] * layer.y_scale));
+        let g = groups.get_mut(&gkey).unwrap();
+        if std::mem::take(&mut g.3) {
+            g.2.push(g.1.len());
+        }
+        g.1.push((xs[row], ys[row] * layer.y_scale));
+    }
+    // A curve's colour follows its group's place among all the table's groups, kept or
+    // not, so that layers with the same `color` pair the same groups whatever they filter.
+    let mut palette_order: Vec<String> = Vec::new();
+    for row in 0..t.n_rows() {
+        let gkey = group.map(|g| g.display_at(row)).unwrap_or_default();
+        if !palette_order.contains(&gkey) {
+            palette_order.push(gkey);
+        }
     }
     Ok(order
         .into_iter()
-        .enumerate()
-        .map(|(i, g)| {
-            let (first_row, points) = groups.remove(&g).unwrap();
+        .map(|g| {
+            let i = palette_order.iter().position(|k| *k == g).unwrap_or(0);
+            let (first_row, points, breaks, _) = groups.remove(&g).unwrap();
             let mut label = layer.label.clone();
             for (name, col) in &t.columns {
                 let pat = format!("{{{name}}}");
@@ -212,6 +241,7 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
                 x_name: layer.x.clone(),
                 y_name: layer.y.clone(),
                 points,
+                breaks,
             }
         })
         .collect())
@@ -233,6 +263,7 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
         x_name: "guide".into(),
         y_name: "guide".into(),
         points,
+        breaks: Vec::new(),
     }
 }
 
@@ -383,15 +414,22 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
         for (i, s) in series.iter().enumerate() {
             let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
             let style = ShapeStyle::from(&color).stroke_width(2);
-            let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (tx(x), ty(y))).filter(inside).collect();
             let err = |e| anyhow::anyhow!("{e:?}");
             // Lines are drawn as the runs of points inside the axes: a curve that leaves
-            // the plotted range is not clamped to its border.
+            // the plotted range is not clamped to its border. A run also ends at the
+            // series' breaks.
             let in_view = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
             let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for q in &pts {
-                if in_view(q) {
-                    runs.last_mut().unwrap().push(*q);
+            for (k, &(x, y)) in s.points.iter().enumerate() {
+                if s.breaks.contains(&k) && !runs.last().unwrap().is_empty() {
+                    runs.push(Vec::new());
+                }
+                let q = (tx(x), ty(y));
+                if !inside(&q) {
+                    continue;
+                }
+                if in_view(&q) {
+                    runs.last_mut().unwrap().push(q);
                 } else if !runs.last().unwrap().is_empty() {
                     runs.push(Vec::new());
                 }
@@ -402,6 +440,7 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                 let anno = match s.style {
                     Style::Line => chart.draw_series(LineSeries::new(run, style)).map_err(err)?,
                     Style::Dashed => chart.draw_series(DashedLineSeries::new(run, 8, 5, style)).map_err(err)?,
+                    Style::Dotted => chart.draw_series(DashedLineSeries::new(run, 2, 4, style)).map_err(err)?,
                     Style::Points => {
                         chart.draw_series(run.into_iter().map(|q| Circle::new(q, 3, color.filled()))).map_err(err)?
                     }
@@ -423,6 +462,13 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                         EmptyElement::at((x, y))
                             + PathElement::new(vec![(0, 0), (22, 0)], legend_style)
                             + Circle::new((11, 0), 3, color.filled())
+                    });
+                } else if s.style == Style::Dotted {
+                    anno.label(s.label.clone()).legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (3, 0)], legend_style)
+                            + PathElement::new(vec![(9, 0), (12, 0)], legend_style)
+                            + PathElement::new(vec![(18, 0), (21, 0)], legend_style)
                     });
                 } else if s.style == Style::Dashed {
                     anno.label(s.label.clone()).legend(move |(x, y)| {
@@ -459,7 +505,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 6;
+    const VERSION: u32 = 7;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
@@ -559,9 +605,47 @@ mod tests {
             label: "g = {g}".into(),
             style: Style::Line,
             filter: BTreeMap::new(),
+            gaps: false,
             y_scale: 1.0,
             color,
         }
+    }
+
+    #[test]
+    fn a_filtered_group_keeps_its_colour_and_gaps_break_the_line() {
+        // Group 0 has a row the filter drops between two kept ones; group 1 has only dropped
+        // rows, group 2 kept ones: group 2 is still the third colour, and with `gaps` group 0
+        // is drawn as two lines.
+        let t = Table::new()
+            .with_f64("x", vec![1.0, 2.0, 3.0, 1.0, 2.0, 1.0, 2.0])
+            .with_f64("a", vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0])
+            .with_f64("keep", vec![1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0])
+            .with_f64("g", vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0]);
+        let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+        let mut l = layer("a", Some(1));
+        l.filter = BTreeMap::from([("keep".to_string(), 1.0)]);
+        let joined = data_series(&l, &inputs).unwrap();
+        assert_eq!(joined.iter().map(|s| s.color).collect::<Vec<_>>(), vec![Some(1), Some(3)]);
+        assert!(joined.iter().all(|s| s.breaks.is_empty()));
+        l.gaps = true;
+        let broken = data_series(&l, &inputs).unwrap();
+        assert_eq!(broken[0].points, vec![(1.0, 1.0), (3.0, 3.0)]);
+        assert_eq!((broken[0].breaks.clone(), broken[1].breaks.clone()), (vec![1], vec![]));
+        let fig = FigureParams {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            log_x: false,
+            log_y: false,
+            x_range: None,
+            y_range: None,
+            width: 400,
+            height: 300,
+            legend: LegendPosition::UpperRight,
+            layers: vec![Layer::Data(l.clone())],
+        };
+        let lines = |series: &[Series]| render(&fig, series).unwrap().matches("<polyline").count();
+        assert_eq!(lines(&broken), lines(&joined) + 1);
     }
 
     #[test]
