@@ -185,6 +185,22 @@ pub fn solve_from(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step,
 /// tolerance at a positive-definite tangent (a stable state); otherwise the last iterate is
 /// returned as not converged.
 pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max_iterations: usize) -> Step {
+    descend_loaded(model, plate, e, delta, u0, &[], max_iterations)
+}
+
+/// `descend` with the dead load `-dead` added to the plate's forces (`dead`: a fixed
+/// gradient, full dof vector, as `Adhesion::apply` writes it; empty: none), whose potential
+/// dead . u joins Pi. With the adhesive forces of a state frozen this is the structural
+/// solve of the thesis' staggered scheme (Section 3.2: adhesive forces applied as loads).
+pub fn descend_loaded(
+    model: &Model,
+    plate: &Plate,
+    e: f64,
+    delta: f64,
+    u0: &[f64],
+    dead: &[f64],
+    max_iterations: usize,
+) -> Step {
     assert!(plate.friction.is_none(), "energy descent needs a potential: no friction");
     const SHIFT_MIN: f64 = 1e-8;
     const SHIFT_MAX: f64 = 1e4;
@@ -192,8 +208,21 @@ pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max
     let scale = e * model.mesh.thickness.powi(2);
     let tol = Options::default().tol * scale;
     let z_plate = apex_z(model) - delta;
-    let potential = |u: &[f64]| Some(model.strain_energy(u)? + plate.energy(&model.mesh, u, z_plate));
-    let state = |u: &[f64]| Some((evaluate(model, plate, delta, u, &[])?, potential(u)?));
+    let dead_work = |u: &[f64]| dead.iter().zip(u).map(|(g, x)| g * x).sum::<f64>();
+    let potential = |u: &[f64]| Some(model.strain_energy(u)? + plate.energy(&model.mesh, u, z_plate) + dead_work(u));
+    let evaluate_loaded = |u: &[f64]| {
+        let mut ev = evaluate(model, plate, delta, u, &[])?;
+        if !dead.is_empty() {
+            for (i, r) in ev.residual.iter_mut().enumerate() {
+                if !model.fixed[i] {
+                    *r += dead[i];
+                }
+            }
+            ev.norm = ev.residual.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        }
+        Some(ev)
+    };
+    let state = |u: &[f64]| Some((evaluate_loaded(u)?, potential(u)?));
     let mut u = u0.to_vec();
     let Some((mut cur, mut pi)) = state(&u) else {
         return Step::failed(delta, u);

@@ -220,7 +220,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 9;
+    const VERSION: u32 = 13;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -278,6 +278,16 @@ impl Kind for FemIndent {
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))
             .with_f64("max_penetration_over_h", col(&|s| s.contact.max_penetration / sh.h))
             .with("stable", ColumnData::Bool(rows.iter().map(|r| r.2.stable).collect()))
+            // Flattened states past the stability test where no inverted state is reachable
+            // (`fem::cycle::invert`): the shell stays there.
+            .with(
+                "held",
+                ColumnData::Bool(
+                    rows.iter()
+                        .map(|r| r.0 != "unstable" && r.1 == "flattened" && r.2.converged && !r.2.stable)
+                        .collect(),
+                ),
+            )
             .with("converged", ColumnData::Bool(rows.iter().map(|r| r.2.converged).collect()))
             .with("iterations", ColumnData::I64(rows.iter().map(|r| r.2.iterations as i64).collect()))
             .with_f64("residual", col(&|s| s.residual))
@@ -289,6 +299,8 @@ impl Kind for FemIndent {
                 vec![finite(c.buckling.map_or(0.0, |b| snap_force_error(&b, default_mesh) * f_bar)); n],
             )
             .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
+            // Where the snap-through landed on the inverted branch (0: it did not).
+            .with_f64("delta_landing_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta_after / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
             .with_f64("W_bar", vec![if c.complete { finite(c.dissipated() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n])
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
@@ -330,7 +342,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 10;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     type Params = ProfileParams;

@@ -180,7 +180,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 11;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -223,6 +223,9 @@ impl Kind for FemBuckling {
             .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
             .with_f64("delta_buckling_error_over_R", vec![finite(b.map_or(0.0, |j| (j.delta - j.delta_stable) / m.R))])
             .with_f64("r_over_R", vec![finite(b.map_or(0.0, |j| j.radius_before / m.R))])
+            // Where the snap-through landed on the inverted branch (0: it did not, or only the
+            // loading up to the snap was computed).
+            .with_f64("delta_landing_over_R", vec![finite(b.map_or(0.0, |j| j.delta_after / m.R))])
             .with_f64("W_bar", vec![finite(w / (m.E * h.powi(3)))])
             .with_f64("W_Nmm", vec![finite(w)])
             .with("complete", ColumnData::Bool(vec![c.complete]))
