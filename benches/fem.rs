@@ -35,6 +35,7 @@ fn main() {
             trace_unstable: true,
             unload: true,
             stop_at_buckling: false,
+            snap: Default::default(),
         };
         let t0 = Instant::now();
         let c = load_unload(&model, &plate, e, opt);

@@ -161,3 +161,37 @@ fn the_default_mesh_gives_the_converged_adhesive_snap() {
     assert!((f - 7.873).abs() <= fe && fe < 0.02 * f, "F {f} +- {fe}");
     assert!(de > 0.0 && de <= 0.35 / 35.0 / 32.0 * 1.0001, "delta bracket {de}");
 }
+
+#[test]
+fn the_landing_criterion_counts_only_the_drops_an_experiment_sees() {
+    // h/R = 0.06 on the default mesh, mu = 0, to delta/R = 0.25. gamma/(E h) = 1e-3: the
+    // stability test gives up the flattened state at delta/R = 0.1916 and the drop comes at
+    // 0.21 (measured), so both criteria see a snap, with the same F_buckling. 2e-2: the
+    // adhering start already fails the test (delta/R 3e-4, the "start instability" of the
+    // gamma_c map), but no inverted state is reachable before 0.25: a snap under
+    // `instability`, none under `landing`.
+    let s = Scratch::new("shell-landing");
+    s.run_pipeline(
+        "stages:
+  - name: inst
+    kind: fem.buckling
+    params: {h_over_R: 0.06, gamma_over_Eh: [0.001, 0.02], dissipation: false, model: {delta_max: 0.25, steps: 25}}
+  - name: land
+    kind: fem.buckling
+    params: {h_over_R: 0.06, gamma_over_Eh: [0.001, 0.02], dissipation: false, model: {delta_max: 0.25, steps: 25, snap: landing}}
+",
+    );
+    let (inst, land) = (s.table("inst"), s.table("land"));
+    let col = |t, c| column(t, c);
+    assert_eq!(col(&inst, "gamma_over_Eh"), vec![0.001, 0.02]);
+    assert_eq!(col(&land, "gamma_over_Eh"), vec![0.001, 0.02]);
+    let buckled = |t| col(t, "F_buckling_bar").iter().map(|&f| f != 0.0).collect::<Vec<_>>();
+    assert_eq!(buckled(&inst), vec![true, true]);
+    assert_eq!(buckled(&land), vec![true, false]);
+    assert_eq!(col(&inst, "F_buckling_bar")[0], col(&land, "F_buckling_bar")[0]);
+    assert!(col(&inst, "delta_buckling_over_R")[1] < 1e-3);
+    // Stopped at the instability, the first never looked for a landing; the second found it.
+    assert_eq!(col(&inst, "delta_landing_over_R")[0], 0.0);
+    let landing = col(&land, "delta_landing_over_R")[0];
+    assert!((landing - 0.21).abs() < 0.006, "landing at delta/R {landing}");
+}

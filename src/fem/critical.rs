@@ -14,7 +14,7 @@
 //! fails), else as not buckling; either way it is reported.
 
 use super::contact::Plate;
-use super::cycle::{load_unload, CycleOptions, Jump};
+use super::cycle::{load_unload, CycleOptions, Jump, Snap};
 use super::system::Model;
 
 /// One loading run at a given adhesion (or thickness).
@@ -132,12 +132,18 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
     Bracket { lo, hi, found: true, probes: m.done }
 }
 
-/// One loading probe of `model` against `plate`, stopping at the snap-through.
+/// One loading probe of `model` against `plate`, stopping at the snap-through as
+/// `opt.snap` defines it. With `Snap::Landing` a loss of stability that never lands (held
+/// by the energy up to delta_max) is not a snap: no `buckling`.
 pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) -> Probe {
     let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
     let reached =
         c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
-    Probe { x, buckling: c.buckling, complete: c.complete, reached }
+    let buckling = match opt.snap {
+        Snap::Instability => c.buckling,
+        Snap::Landing => c.buckling.filter(|j| j.delta_after.is_finite()),
+    };
+    Probe { x, buckling, complete: c.complete, reached }
 }
 
 #[cfg(test)]
@@ -195,6 +201,7 @@ mod tests {
             trace_unstable: false,
             unload: false,
             stop_at_buckling: true,
+            snap: Default::default(),
         };
         let plate = |g: f64| Plate::new(&model.mesh, e, 1000.0).with_adhesion(g, 0.1);
         let b = bracket(|g| probe(&model, &plate(g), e, g, opt), 3e-3 * e * h, 2.0, 0.1 * e * h, 0.2);

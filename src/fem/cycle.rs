@@ -39,6 +39,21 @@ pub struct CycleOptions {
     /// End the loading leg at the snap-through (the question "does it buckle, and at what
     /// force" is then answered; implies no unloading).
     pub stop_at_buckling: bool,
+    /// What answers that question when the leg stops there (`Snap`).
+    pub snap: Snap,
+}
+
+/// When a loading leg that stops at the snap-through has its answer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Snap {
+    /// At the first state the stability test gives up (the thesis' criterion, its
+    /// structural solve seeing the adhesion as loads): F_buckling is known.
+    #[default]
+    Instability,
+    /// At the landing on the inverted branch: the drop a displacement-controlled
+    /// experiment sees. States given up but held by the energy (`invert`) do not count; a
+    /// leg that never lands has not snapped.
+    Landing,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -326,7 +341,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     pull_before: lo.contact.adhesive,
                     delta_after: f64::NAN,
                 });
-                if opt.stop_at_buckling {
+                if opt.stop_at_buckling && opt.snap == Snap::Instability {
                     // The question is answered.
                     break;
                 }
@@ -349,6 +364,11 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                 }
                 inverted = true;
                 s = inv;
+                if opt.stop_at_buckling {
+                    // Landed: the question is answered (`Snap::Landing`).
+                    loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
+                    break;
+                }
             } else if !retry && from.delta < s.delta {
                 // The first unstable state, held (the bisection's end).
                 loading.push(CyclePoint { step: from, leg: Leg::Loading, inverted: false });
@@ -515,6 +535,7 @@ mod tests {
             trace_unstable: true,
             unload: true,
             stop_at_buckling: false,
+            snap: Default::default(),
         }
     }
 
@@ -656,6 +677,7 @@ mod tests {
                 trace_unstable: false,
                 unload: true,
                 stop_at_buckling: false,
+                snap: Default::default(),
             };
             let c = load_unload(&model, &plate, e, opt);
             (c.clone(), c.dissipated() / (e * h.powi(3)))

@@ -208,6 +208,7 @@ impl IndentParams {
             trace_unstable: unload,
             unload,
             stop_at_buckling: false,
+            snap: Default::default(),
         };
         load_unload(model, plate, self.shell.E, opt)
     }

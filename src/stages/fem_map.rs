@@ -11,7 +11,7 @@ use super::fem::snap_force_error;
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::critical::{bracket, probe};
-use crate::fem::cycle::{load_unload, CycleOptions};
+use crate::fem::cycle::{load_unload, CycleOptions, Snap};
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use crate::fem::system::{Base, Model};
@@ -31,6 +31,35 @@ pub enum Hold {
     Free,
     /// The law's lifting stiffness 16 dgamma / g0^2.
     LennardJones,
+}
+
+/// What counts as a snap-through for the questions "does it buckle before delta_max"
+/// (`fem.gamma_c`, `fem.buckling_limit`) and where (`fem.buckling` without dissipation)
+/// (`fem::cycle::Snap`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum SnapCriterion {
+    /// The stability test gives up the flattened state (the thesis' criterion; default).
+    #[default]
+    Instability,
+    /// The state lands on the inverted branch: the drop a displacement-controlled experiment
+    /// sees (states given up by the test but held by the energy do not count).
+    Landing,
+}
+
+impl SnapCriterion {
+    fn is_default(&self) -> bool {
+        *self == SnapCriterion::Instability
+    }
+}
+
+impl From<SnapCriterion> for Snap {
+    fn from(c: SnapCriterion) -> Snap {
+        match c {
+            SnapCriterion::Instability => Snap::Instability,
+            SnapCriterion::Landing => Snap::Landing,
+        }
+    }
 }
 
 impl From<Hold> for AdhesiveHold {
@@ -72,6 +101,9 @@ pub struct MapModel {
     pub bisections: u32,
     /// What holds touching adhesive points in the stability test.
     pub hold: Hold,
+    /// What counts as a snap-through: `instability` (default) or `landing`.
+    #[serde(skip_serializing_if = "SnapCriterion::is_default")]
+    pub snap: SnapCriterion,
 }
 
 impl Default for MapModel {
@@ -90,6 +122,7 @@ impl Default for MapModel {
             lift_threshold: LIFT_THRESHOLD,
             bisections: 5,
             hold: Hold::Free,
+            snap: SnapCriterion::Instability,
         }
     }
 }
@@ -139,6 +172,7 @@ impl MapModel {
             trace_unstable: false,
             unload,
             stop_at_buckling: !unload,
+            snap: self.snap.into(),
         }
     }
 
@@ -202,7 +236,8 @@ impl Kind for FemBuckling {
         let plate = m.plate(&model, p.h_over_R, p.gamma_over_Eh, p.mu);
         let c = load_unload(&model, &plate, m.E, m.options(p.dissipation));
         let fb = m.f_bar(p.h_over_R);
-        let b = c.buckling;
+        // Under `snap: landing` a loss of stability that never lands is no snap.
+        let b = c.buckling.filter(|j| m.snap == SnapCriterion::Instability || j.delta_after.is_finite());
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
