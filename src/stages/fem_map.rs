@@ -10,7 +10,7 @@
 use super::fem::snap_force_error;
 use super::{check, finite};
 use crate::fem::contact::Plate;
-use crate::fem::critical::{bracket, probe};
+use crate::fem::critical::{bracket, probe, retrying};
 use crate::fem::cycle::{load_unload, CycleOptions, Snap};
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
@@ -312,7 +312,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 8;
+    const VERSION: u32 = 9;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
@@ -339,7 +339,7 @@ impl Kind for FemGammaC {
         let scale = m.E * m.h(p.h_over_R);
         let opt = m.options(false);
         let b = bracket(
-            |g| probe(&model, &m.plate(&model, p.h_over_R, g / scale, p.mu), m.E, g, opt),
+            retrying(|g| probe(&model, &m.plate(&model, p.h_over_R, g / scale, p.mu), m.E, g, opt)),
             p.guess * scale,
             p.growth,
             p.gamma_max * scale,
