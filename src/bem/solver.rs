@@ -793,7 +793,15 @@ fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Pr
                     let factor = if i == 0 { 1.5 } else { 1.1 };
                     let (s, it) = continue_geometric(from, cap, factor, sol, |lambda, h, delta| {
                         let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
-                        newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, LAMBDA_STEP_ITERATIONS, pre)
+                        newton(
+                            &op,
+                            &at(lambda, v),
+                            Control::Load(params.w),
+                            h.to_vec(),
+                            delta,
+                            LAMBDA_STEP_ITERATIONS,
+                            pre,
+                        )
                     });
                     sol = s;
                     iterations += it;
