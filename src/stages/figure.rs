@@ -611,6 +611,23 @@ mod tests {
         }
     }
 
+    /// A 400 x 300 figure of `layers` with placeholder labels.
+    fn test_figure(layers: Vec<Layer>) -> FigureParams {
+        FigureParams {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            log_x: false,
+            log_y: false,
+            x_range: None,
+            y_range: None,
+            width: 400,
+            height: 300,
+            legend: LegendPosition::UpperRight,
+            layers,
+        }
+    }
+
     #[test]
     fn a_filtered_group_keeps_its_colour_and_gaps_break_the_line() {
         // Group 0 has a row the filter drops between two kept ones; group 1 has only dropped
@@ -631,19 +648,7 @@ mod tests {
         let broken = data_series(&l, &inputs).unwrap();
         assert_eq!(broken[0].points, vec![(1.0, 1.0), (3.0, 3.0)]);
         assert_eq!((broken[0].breaks.clone(), broken[1].breaks.clone()), (vec![1], vec![]));
-        let fig = FigureParams {
-            title: "t".into(),
-            x_label: "x".into(),
-            y_label: "y".into(),
-            log_x: false,
-            log_y: false,
-            x_range: None,
-            y_range: None,
-            width: 400,
-            height: 300,
-            legend: LegendPosition::UpperRight,
-            layers: vec![Layer::Data(l.clone())],
-        };
+        let fig = test_figure(vec![Layer::Data(l.clone())]);
         let lines = |series: &[Series]| render(&fig, series).unwrap().matches("<polyline").count();
         assert_eq!(lines(&broken), lines(&joined) + 1);
     }
@@ -663,19 +668,7 @@ mod tests {
         assert_eq!(colors(&layer("b", Some(2))), vec![Some(2), Some(3)]);
         // Rendered: the first layer is blue and red (color 1); without `color` the second
         // layer takes the palette by position (red, green), with color 1 it repeats blue, red.
-        let fig = |c: Option<usize>| FigureParams {
-            title: "t".into(),
-            x_label: "x".into(),
-            y_label: "y".into(),
-            log_x: false,
-            log_y: false,
-            x_range: None,
-            y_range: None,
-            width: 400,
-            height: 300,
-            legend: LegendPosition::UpperRight,
-            layers: vec![Layer::Data(layer("a", Some(1))), Layer::Data(layer("b", c))],
-        };
+        let fig = |c: Option<usize>| test_figure(vec![Layer::Data(layer("a", Some(1))), Layer::Data(layer("b", c))]);
         let svg = |c| {
             let series: Vec<Series> =
                 [layer("a", Some(1)), layer("b", c)].iter().flat_map(|l| data_series(l, &inputs).unwrap()).collect();
