@@ -4,6 +4,11 @@
 //! loses stability (loading: the flattened state, whose interior then lifts off and inverts,
 //! `stability`) or ends (unloading: the inverted state past its limit point), and then jumps
 //! at that delta to the other branch. Both events are located by bisection in delta.
+//! With adhesion the loss of stability can come before the inverted branch exists: the
+//! jump lands where an energy descent leads (`invert`), and until it does the flattened
+//! state is *held* (given up by the stability test, kept by the energy) and the landing is
+//! sought again at each step. `Snap` chooses which of the two events answers "does it
+//! buckle" when the leg stops there.
 //!
 //! Reported: F_buckling (the largest force before the snap) and its delta, the snap-back
 //! delta on unloading, and the work of the plate on each leg, whose difference is the
