@@ -266,6 +266,28 @@ const LANDING_DESCENT_ITERATIONS: usize = 150;
 /// starts from before it gives up.
 const SNAP_BACK_STARTS: usize = 4;
 
+/// From the converged state `from` to plate displacement `target` in steps halved on
+/// failure (at most `max_cuts` halvings below half the distance); the state at `target`,
+/// or None if a step fails at the smallest size.
+fn walk(model: &Model, plate: &Plate, e: f64, from: &Step, target: f64, max_cuts: u32) -> Option<Step> {
+    let mut cur = from.clone();
+    let mut dd = 0.5 * (target - from.delta);
+    let mut cuts = 1;
+    while cur.delta != target {
+        let next = if (target - cur.delta).abs() <= dd.abs() { target } else { cur.delta + dd };
+        let s = solve_from(model, plate, e, next, &cur, Options::default());
+        if s.converged {
+            cur = s;
+        } else if cuts < max_cuts {
+            cuts += 1;
+            dd *= 0.5;
+        } else {
+            return None;
+        }
+    }
+    Some(cur)
+}
+
 fn work(points: &[CyclePoint]) -> f64 {
     points
         .windows(2)
@@ -497,6 +519,14 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         };
         if !s.converged {
             s = solve_from(model, plate, e, warm.delta, &cur, Options { max_iterations: 60, ..Options::default() });
+        }
+        if !s.converged && plate.friction.is_some() {
+            // With friction the unloading path is walked in halved steps, as the loading is
+            // (measured: h/R = 0.06, gamma/(E h) = 2e-3, mu = 1 failed in one step at
+            // delta/R = 0.11 for h = 0.06 x 15, not for h = 0.9).
+            if let Some(t) = walk(model, plate, e, &cur, warm.delta, opt.max_cuts) {
+                s = t;
+            }
         }
         if !s.converged {
             unloading.push(CyclePoint { step: s, leg: Leg::Unloading, inverted });
