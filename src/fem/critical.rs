@@ -14,7 +14,7 @@
 //! fails), else as not buckling; either way it is reported.
 
 use super::contact::Plate;
-use super::cycle::{load_unload, CycleOptions, Jump, Snap};
+use super::cycle::{load_unload, CycleOptions, Jump};
 use super::system::Model;
 
 /// One loading run at a given adhesion (or thickness).
@@ -165,11 +165,7 @@ pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) ->
     let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
     let reached =
         c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
-    let buckling = match opt.snap {
-        Snap::Instability => c.buckling,
-        Snap::Landing => c.buckling.filter(|j| j.delta_after.is_finite()),
-    };
-    Probe { x, buckling, complete: c.complete, reached }
+    Probe { x, buckling: c.buckling.filter(|j| opt.snap.counts(j)), complete: c.complete, reached }
 }
 
 #[cfg(test)]

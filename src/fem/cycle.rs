@@ -61,6 +61,13 @@ pub enum Snap {
     Landing,
 }
 
+impl Snap {
+    /// Whether the loss of stability `j` is a snap-through under this criterion.
+    pub fn counts(self, j: &Jump) -> bool {
+        self == Snap::Instability || j.delta_after.is_finite()
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Leg {
     Loading,

@@ -237,7 +237,7 @@ impl Kind for FemBuckling {
         let c = load_unload(&model, &plate, m.E, m.options(p.dissipation));
         let fb = m.f_bar(p.h_over_R);
         // Under `snap: landing` a loss of stability that never lands is no snap.
-        let b = c.buckling.filter(|j| m.snap == SnapCriterion::Instability || j.delta_after.is_finite());
+        let b = c.buckling.filter(|j| Snap::from(m.snap).counts(j));
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
