@@ -267,7 +267,7 @@ pub struct BemMaxima;
 
 impl Kind for BemMaxima {
     const NAME: &'static str = "bem.maxima";
-    const VERSION: u32 = 5;
+    const VERSION: u32 = 6;
     const DOC: &'static str =
         "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
