@@ -11,7 +11,9 @@
 //!
 //! A probe whose loading fails to converge before either answer is counted as buckling if
 //! it got past a quarter of delta_max (the snap is where Newton on the flattened branch
-//! fails), else as not buckling; either way it is reported.
+//! fails), else as not buckling; either way it is reported. A loading that fails within
+//! the last percent of delta_max (`END_FRACTION`), stable up to there, has not snapped
+//! before delta_max to that tolerance: not buckling, and decided.
 
 use super::contact::Plate;
 use super::cycle::{load_unload, CycleOptions, Jump};
@@ -29,12 +31,29 @@ pub struct Probe {
     pub reached: f64,
 }
 
+/// The fraction of delta_max past which a loading that fails to converge, every state
+/// before stable, counts as not snapping before delta_max. Measured (h/R = 0.02, mu = 0.5,
+/// gamma/(E h) = 0.04, default mesh 230 x 2): the loading to delta_max = 0.35 R failed at
+/// delta/R = 0.3497 (residual 1e-4), and so did gamma (1 + 1e-3) at 0.3496 and gamma 0.08 at
+/// 0.3497, while the same loading to 0.34 R or to 0.36 R runs through stable without a snap:
+/// the failure is the last step's, not a fold. Counted as buckling by the quarter rule,
+/// such probes had put gamma_c at 0.082 instead of between 0.02 and 0.04.
+pub const END_FRACTION: f64 = 0.99;
+
 impl Probe {
     /// A snap, or a loading that failed after a quarter of delta_max (where Newton on the
-    /// flattened branch fails, the snap is near). A loading that failed earlier (strong
-    /// adhesion at first contact) is no evidence of buckling: counted as not buckling.
+    /// flattened branch fails, the snap is near) but before `END_FRACTION` of it. A loading
+    /// that failed earlier (strong adhesion at first contact) is no evidence of buckling:
+    /// counted as not buckling.
     pub fn buckles(&self) -> bool {
-        self.buckling.is_some() || (!self.complete && self.reached > 0.25)
+        self.buckling.is_some() || (!self.decided() && self.reached > 0.25)
+    }
+
+    /// The probe answers its question: it converged to its answer, or it failed past
+    /// `END_FRACTION` of delta_max with every state before stable (no snap before
+    /// delta_max, to that tolerance).
+    pub fn decided(&self) -> bool {
+        self.complete || (self.buckling.is_none() && self.reached >= END_FRACTION)
     }
 }
 
@@ -58,10 +77,10 @@ impl Bracket {
         }
     }
 
-    /// Both ends of the bracket rest on probes that converged to their answer (a failed
-    /// probe decides a side by the rule of `Probe::buckles` only).
+    /// Both ends of the bracket rest on decided probes (`Probe::decided`; a failed probe
+    /// otherwise decides a side by the rule of `Probe::buckles` only).
     pub fn reliable(&self) -> bool {
-        let ok = |x: f64| self.probes.iter().find(|p| p.x == x).is_none_or(|p| p.complete);
+        let ok = |x: f64| self.probes.iter().find(|p| p.x == x).is_none_or(|p| p.decided());
         self.found && ok(self.lo) && ok(self.hi)
     }
 
@@ -136,7 +155,7 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
 /// run once more (`retrying`).
 pub const RETRY_SHIFT: f64 = 1e-3;
 
-/// `probe`, run once more at x (1 + RETRY_SHIFT) when it does not converge to an answer;
+/// `probe`, run once more at x (1 + RETRY_SHIFT) when it does not decide (`Probe::decided`);
 /// the answer found there stands for x (its `x` stays x). Measured: with friction the
 /// loading's Newton can stall on a node at the stick/slip kink for one value and not for
 /// its neighbour (h/R = 0.02, mu = 0.5, gamma/(E h) = 0.04: the stage's gamma failed at
@@ -146,11 +165,11 @@ pub const RETRY_SHIFT: f64 = 1e-3;
 pub fn retrying(mut probe: impl FnMut(f64) -> Probe) -> impl FnMut(f64) -> Probe {
     move |x| {
         let p = probe(x);
-        if p.complete {
+        if p.decided() {
             return p;
         }
         let q = probe(x * (1.0 + RETRY_SHIFT));
-        if q.complete {
+        if q.decided() {
             Probe { x, ..q }
         } else {
             p
@@ -210,17 +229,46 @@ mod tests {
     fn a_probe_that_fails_is_answered_by_its_neighbour() {
         // Fails exactly at x = 0.5 (and at 0.7 and its neighbour): the retry answers 0.5
         // from 0.5005, keeps x = 0.5; 0.7 stays failed; a converged probe runs once.
+        // A failure in the last percent of delta_max (x = 0.9) is decided: no rerun.
         let mut runs = Vec::new();
         let mut f = retrying(|x: f64| {
             runs.push(x);
-            Probe { x, buckling: None, complete: x != 0.5 && (x - 0.7).abs() > 0.01, reached: 1.0 }
+            let complete = x != 0.5 && (x - 0.7).abs() > 0.01 && x != 0.9;
+            Probe {
+                x,
+                buckling: None,
+                complete,
+                reached: if x == 0.9 {
+                    0.995
+                } else if complete {
+                    1.0
+                } else {
+                    0.6
+                },
+            }
         });
         let p = f(0.5);
         assert!(p.complete && p.x == 0.5);
         assert!(!f(0.7).complete);
         assert!(f(0.2).complete);
+        let end = f(0.9);
+        assert!(!end.complete && end.decided() && !end.buckles());
         drop(f);
-        assert_eq!(runs, vec![0.5, 0.5 * (1.0 + RETRY_SHIFT), 0.7, 0.7 * (1.0 + RETRY_SHIFT), 0.2]);
+        assert_eq!(runs, vec![0.5, 0.5 * (1.0 + RETRY_SHIFT), 0.7, 0.7 * (1.0 + RETRY_SHIFT), 0.2, 0.9]);
+    }
+
+    #[test]
+    fn a_failed_loading_answers_by_where_it_failed() {
+        // Past a quarter of delta_max: taken for the fold of a snap; before: no evidence; in
+        // the last percent, every state before stable: no snap before delta_max.
+        let failed = |reached: f64| Probe { x: 1.0, buckling: None, complete: false, reached };
+        assert!(!failed(0.1).buckles() && !failed(0.1).decided());
+        assert!(failed(0.5).buckles() && !failed(0.5).decided());
+        assert!(failed(0.98).buckles());
+        assert!(!failed(0.995).buckles() && failed(0.995).decided());
+        // A bracket end on such a probe is reliable; on a mid-way failure it is not.
+        let bracket_on = |reached: f64| Bracket { lo: 0.5, hi: 1.0, found: true, probes: vec![failed(reached)] };
+        assert!(bracket_on(0.995).reliable() && !bracket_on(0.5).reliable());
     }
 
     #[test]
