@@ -277,19 +277,42 @@ const SNAP_BACK_STARTS: usize = 4;
 /// failure (at most `max_cuts` halvings below half the distance); the state at `target`,
 /// or None if a step fails at the smallest size.
 fn walk(model: &Model, plate: &Plate, e: f64, from: &Step, target: f64, max_cuts: u32) -> Option<Step> {
-    let mut cur = from.clone();
-    let mut dd = 0.5 * (target - from.delta);
+    halving_walk(
+        from.clone(),
+        |s| s.delta,
+        target,
+        max_cuts,
+        |next, cur| {
+            let s = solve_from(model, plate, e, next, cur, Options::default());
+            s.converged.then_some(s)
+        },
+    )
+}
+
+/// The walk of `walk` for any state with a plate displacement `delta_of`: `solve(next,
+/// cur)` gives the state at `next` from `cur`, or None. The first step is half the
+/// distance; a failed step is halved (at most `max_cuts` halvings in all) and the size
+/// reached is kept for the rest of the walk. The last step lands on `target` exactly.
+fn halving_walk<S>(
+    from: S,
+    delta_of: impl Fn(&S) -> f64,
+    target: f64,
+    max_cuts: u32,
+    mut solve: impl FnMut(f64, &S) -> Option<S>,
+) -> Option<S> {
+    let mut cur = from;
+    let mut dd = 0.5 * (target - delta_of(&cur));
     let mut cuts = 1;
-    while cur.delta != target {
-        let next = if (target - cur.delta).abs() <= dd.abs() { target } else { cur.delta + dd };
-        let s = solve_from(model, plate, e, next, &cur, Options::default());
-        if s.converged {
-            cur = s;
-        } else if cuts < max_cuts {
-            cuts += 1;
-            dd *= 0.5;
-        } else {
-            return None;
+    while delta_of(&cur) != target {
+        let at = delta_of(&cur);
+        let next = if (target - at).abs() <= dd.abs() { target } else { at + dd };
+        match solve(next, &cur) {
+            Some(s) => cur = s,
+            None if cuts < max_cuts => {
+                cuts += 1;
+                dd *= 0.5;
+            }
+            None => return None,
         }
     }
     Some(cur)
@@ -553,6 +576,40 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_walk_halves_its_steps_where_they_fail_and_lands_on_the_target() {
+        // A solver that fails on steps longer than 0.05 that reach into (0.3, 0.6), and
+        // everywhere on steps longer than 0.3: from 0 to 1 (and back down) the walk halves
+        // its step until 1/32 passes and ends exactly on the target.
+        let passes = |from: f64, to: f64| {
+            let len = (to - from).abs();
+            let rough = from.max(to) > 0.3 && from.min(to) < 0.6;
+            len <= 0.3 && (!rough || len <= 0.05)
+        };
+        for (from, target, solves) in [(0.0, 1.0, 29), (1.0, 0.0, 26)] {
+            let mut steps = Vec::new();
+            let end = halving_walk(
+                from,
+                |&d| d,
+                target,
+                8,
+                |next, &cur| {
+                    let ok = passes(cur, next);
+                    steps.push((cur, next, ok));
+                    ok.then_some(next)
+                },
+            );
+            assert_eq!(end, Some(target), "{steps:?}");
+            // Four halvings (steps of 0.5, 0.25, 0.125 and 0.0625 fail on the way into the
+            // rough zone), then steps of 1/32 to the end.
+            assert_eq!(steps.iter().filter(|s| !s.2).count(), 4, "{steps:?}");
+            assert_eq!(steps.len(), solves, "{steps:?}");
+        }
+        // Not enough halvings allowed: None.
+        let end = halving_walk(0.0, |&d| d, 1.0, 3, |next, &cur: &f64| passes(cur, next).then_some(next));
+        assert_eq!(end, None);
+    }
     use crate::fem::mesh::ShellMesh;
     use crate::fem::system::Base;
 
