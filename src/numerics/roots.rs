@@ -118,6 +118,14 @@ mod tests {
         assert!((x - 0.3).abs() < 1e-8 && (fx - 1.0).abs() < 1e-12);
     }
 
+    /// `f`, counting its calls in `calls`.
+    fn counted<'a>(calls: &'a std::cell::Cell<usize>, f: impl Fn(f64) -> f64 + 'a) -> impl Fn(f64) -> f64 + 'a {
+        move |x| {
+            calls.set(calls.get() + 1);
+            f(x)
+        }
+    }
+
     #[test]
     fn the_climb_finds_what_the_grid_finds_with_fewer_evaluations() {
         use std::cell::Cell;
@@ -126,26 +134,8 @@ mod tests {
         for (peak, saved) in [(-1.7, 3), (-0.4, 5), (0.1, 6), (0.9, 4), (2.0, 3), (2.6, 3)] {
             let f = |x: f64| 1.0 / (1.0 + (x - peak) * (x - peak));
             let (full, climb) = (Cell::new(0), Cell::new(0));
-            let a = maximize(
-                |x| {
-                    full.set(full.get() + 1);
-                    f(x)
-                },
-                -2.0,
-                2.0,
-                9,
-                1e-3,
-            );
-            let b = maximize_climbing(
-                |x| {
-                    climb.set(climb.get() + 1);
-                    f(x)
-                },
-                -2.0,
-                2.0,
-                9,
-                1e-3,
-            );
+            let a = maximize(counted(&full, f), -2.0, 2.0, 9, 1e-3);
+            let b = maximize_climbing(counted(&climb, f), -2.0, 2.0, 9, 1e-3);
             assert_eq!(a, b, "peak {peak}");
             assert_eq!(full.get() - climb.get(), saved, "peak {peak}");
         }
