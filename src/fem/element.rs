@@ -145,10 +145,15 @@ fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5]
     Some((p, a))
 }
 
-/// The element's strain energy (for tests) or None if inverted somewhere.
+/// The element's strain energy or None if inverted somewhere.
 pub fn energy(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
+    energy_of(&Geometry::new(x), u, mu, lambda)
+}
+
+/// `energy` of an element whose Gauss-point geometry is known.
+pub fn energy_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
     let mut w = 0.0;
-    for p in &Geometry::new(x).0 {
+    for p in &geometry.0 {
         let f = deformation(p, u);
         let j = (f[0] * f[3] - f[1] * f[2]) * f[4];
         if !(j > 0.0) {

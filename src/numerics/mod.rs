@@ -1,5 +1,6 @@
 //! Small numerical building blocks shared by the physics modules.
 
+pub mod banded;
 pub mod fit;
 pub mod gmres;
 pub mod quad;
