@@ -1,7 +1,7 @@
 //! Micro-benchmarks (divan): BEM kernel assembly (the Toeplitz influence coefficients of an
 //! SLS, Eq. 4.12), one BEM solve at a fixed mesh, one FEM Newton step (tangent and residual
-//! assembly with contact, then the sparse solve) and the cache's hashing (task key, entry
-//! verification). Run: `cargo bench --bench micro` (`make bench` runs it).
+//! assembly with contact, then the band solve), the band factorisations of a shell-sized
+//! tangent and the cache's hashing (task key, entry verification). Run: `cargo bench --bench micro` (`make bench` runs it).
 
 use repro::bem::solver::{solve, Mesh, Params};
 use repro::fem::contact::Plate;
@@ -61,6 +61,24 @@ fn fem_newton_step(bencher: divan::Bencher) {
         );
         let rhs: Vec<f64> = fint.iter().zip(&fext).map(|(a, b)| b - a).collect();
         model.solve(&trip, &rhs).unwrap()
+    });
+}
+
+/// LU (partial pivoting) and Cholesky of a band of the shell tangent's shape: 3690 dofs,
+/// half-width 21 (the 230 x 2 default mesh numbered along the meridian).
+#[divan::bench(args = ["lu", "cholesky"])]
+fn fem_band_factorisation(bencher: divan::Bencher, which: &str) {
+    let (n, half) = (3690, 21);
+    let mut band = repro::numerics::banded::Band::zeros(n, half, half);
+    for i in 0..n {
+        for j in i.saturating_sub(half)..=(i + half).min(n - 1) {
+            let v = if i == j { 4.0 * half as f64 } else { -1.0 / (1.0 + i.abs_diff(j) as f64) };
+            band.set(i, j, v);
+        }
+    }
+    bencher.bench(|| match which {
+        "lu" => band.clone().lu().is_some(),
+        _ => band.cholesky().is_some(),
     });
 }
 

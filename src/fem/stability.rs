@@ -12,7 +12,7 @@
 //! lifts it, long after the bilateral tangent still looks positive definite.
 //!
 //! Test: K_int plus the penalty stiffness only on the nodes whose pressure exceeds
-//! `threshold` times the largest, positive definite (sparse Cholesky). The threshold is the
+//! `threshold` times the largest, positive definite (Cholesky). The threshold is the
 //! model's one free choice here: measured on R = 15, h = 1 (60 x 3 elements and 80 x 4), the
 //! first unstable delta/R is 0.175, 0.185, 0.190, 0.195, 0.200, 0.205 for thresholds 0.2,
 //! 0.1, 0.05, 0.02, 0.01, 0.005, all past the limit point of the inverted branch (0.1735,
