@@ -307,9 +307,10 @@ mod tests {
         // force, contact minus adhesive pull, does not: measured on this mesh F R/(E h^3) =
         // 9.3, 11.3, 11.1, 10.0 at gamma/(E h) = 0, 5e-4, 1e-3, 2e-3 (the pull grows with the
         // contact's perimeter).
-        // On this coarse mesh the adhering start at gamma/(E h) = 6e-3 is itself unstable
-        // (at delta/R < 1e-3: the adhesive contact jumps, it does not snap through), which
-        // the cycle records as its instability; the snap-throughs are those past delta/R 0.05.
+        // Only the snap-throughs count here, those past delta/R 0.05: with the former
+        // jump-in (Newton, before `cycle::jump_in` became an energy descent) the adhering
+        // start at gamma/(E h) = 6e-3 was itself unstable on this coarse mesh (delta/R <
+        // 1e-3), which the cycle records as its instability.
         let mut side: Vec<_> = b
             .probes
             .iter()
