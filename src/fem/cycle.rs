@@ -303,8 +303,8 @@ fn press_and_withdraw(model: &Model, plate: &Plate, e: f64, step: f64) -> Option
 /// A state of the jump-in: the converged Newton state `trial` if it is stable; if it is an
 /// unstable equilibrium (Newton converges to whichever equilibrium is near, and past a fold
 /// of the adhering branch that is the saddle beyond it), the minimum the energy descends to
-/// from the previous state `from` (frictionless, then re-anchored: `anchor`), as a damped
-/// shell would come to rest. None if neither converges.
+/// from the previous state `from`, as a damped shell would come to rest (a frictionless
+/// `plate`: the descent needs a potential). None if neither converges.
 ///
 /// Measured: without this, the start of h/R = 0.1, mu = 0, gamma/(E h) = 0.03 was a saddle
 /// (r/R 0.430, unstable even with every contact node held) with the sparse LU of session 11
@@ -317,9 +317,8 @@ fn stable_or_descend(model: &Model, plate: &Plate, e: f64, trial: Step, from: &[
     if trial.stable {
         return Some(trial);
     }
-    let rest = descend(model, &plate.frictionless(), e, trial.delta, from, LANDING_DESCENT_ITERATIONS);
-    let s = anchor(model, plate, e, rest);
-    (s.converged && s.stable).then_some(s)
+    let s = descend(model, plate, e, trial.delta, from, LANDING_DESCENT_ITERATIONS);
+    s.converged.then_some(s)
 }
 
 /// Shifted-Newton iterations of an energy descent that lands a jump.
