@@ -18,7 +18,9 @@
 use super::adhesion::Tangent;
 use super::arclength::{continue_path, ArcOptions};
 use super::contact::Plate;
-use super::indent::{apex_z, descend, descend_loaded, dimple, solve_at, solve_from, Options, Step};
+use super::indent::{
+    apex_z, descend, descend_loaded, dimple, solve_at, solve_from, solve_from_extending, Options, Step,
+};
 use super::stability::{unilaterally_stable, AdhesiveHold};
 use super::system::Model;
 
@@ -595,16 +597,21 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         if !cycle.complete || inverted {
             break;
         }
-        // Frictionless, the loading state is the answer (Newton confirms it); with friction the
-        // state depends on the path: Euler predictor from the last unloading state.
+        // Frictionless, the loading state is the answer (Newton confirms it), else Newton from
+        // the last unloading state with an Euler predictor; with friction the state depends
+        // on the path: Euler predictor from the last unloading state, its runs extended
+        // where they stopped at the iteration limit.
+        let more = Options { max_iterations: 60, ..Options::default() };
         let mut s = if plate.friction.is_none() {
-            solve_at(model, plate, e, warm.delta, &warm.u, &cur.contact.stick, Options::default())
+            let s = solve_at(model, plate, e, warm.delta, &warm.u, &cur.contact.stick, Options::default());
+            if s.converged {
+                s
+            } else {
+                solve_from(model, plate, e, warm.delta, &cur, more)
+            }
         } else {
-            solve_from(model, plate, e, warm.delta, &cur, Options::default())
+            solve_from_extending(model, plate, e, warm.delta, &cur, Options::default(), more.max_iterations)
         };
-        if !s.converged {
-            s = solve_from(model, plate, e, warm.delta, &cur, Options { max_iterations: 60, ..Options::default() });
-        }
         if !s.converged && plate.friction.is_some() {
             // With friction the unloading path is walked in halved steps, as the loading is
             // (measured: h/R = 0.06, gamma/(E h) = 2e-3, mu = 1 failed in one step at
