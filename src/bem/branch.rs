@@ -19,7 +19,7 @@
 //!
 //! The speed V = v tau/beta is held fixed along the walk.
 
-use super::solver::{Control, PathSolver, Solution};
+use super::solver::{Control, PathSolver, Solution, TOLERANCE};
 use super::traction;
 use crate::numerics::roots::golden_section_max;
 
@@ -212,6 +212,59 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
     }
 }
 
+/// Regula falsi iterations of `along_the_path`.
+const PATH_ROOT_ITERATIONS: usize = 60;
+
+/// The state at load `w` between the neighbours `above` and `below` of a walk (their loads
+/// bracket `w`), found along the path between them: the arclength from `above` along their
+/// secant is the unknown, each trial solved under path control (regular, also where the
+/// lattice of the crack front makes load control stall), until the load is `w` to
+/// `TOLERANCE`; then polished by Newton under load control from there. Measured where
+/// load control from the interpolated guess fails: lambda = 2.19, k = 0.5, 95 % of the
+/// pull-off. None if the bracket cannot be narrowed (a trial off the branch or not
+/// converged).
+fn along_the_path(walk: &mut Walk, above: &Solution, below: &Solution, w: f64) -> Option<Solution> {
+    let (t, len) = direction(point(above), point(below));
+    let origin = point(above);
+    // Illinois regula falsi on g(s) = W(s) - w, g(0) > 0 >= g(len).
+    let (mut a, mut ga, mut sa) = (0.0, above.load() - w, above.clone());
+    let (mut b, mut gb, mut sb) = (len, below.load() - w, below.clone());
+    let mut side = 0;
+    for _ in 0..PATH_ROOT_ITERATIONS {
+        let s = (a * gb - b * ga) / (gb - ga);
+        let near = if s - a < b - s { &sa } else { &sb };
+        let r = walk.solve(arc(t, origin, s), &near.h, near.delta);
+        if !(r.converged && on_branch(above, &r)) {
+            return None;
+        }
+        let g = r.load() - w;
+        if g.abs() <= TOLERANCE {
+            let mut polished = walk.solver.solve_load(w, &r);
+            if polished.converged && on_branch(above, &polished) {
+                polished.iterations += r.iterations;
+                return Some(polished);
+            }
+            // Load control stalls even here: the path state, whose load is w to TOLERANCE.
+            let residual = r.residual.max(g.abs());
+            return Some(Solution { params: r.params.with_load(w), residual, ..r });
+        }
+        if g > 0.0 {
+            (a, ga, sa) = (s, g, r);
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        } else {
+            (b, gb, sb) = (s, g, r);
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    None
+}
+
 /// The stable equilibrium at load `w`, below the load of `start` and above the pull-off:
 /// walks down the branch until the load passes `w`, then solves under load control from the
 /// linear interpolation of the two bracketing states. If the branch reaches its minimum (or
@@ -237,10 +290,10 @@ pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
             guess.h = above.h.iter().zip(&below.h).map(|(a, b)| a + t * (b - a)).collect();
             guess.delta = above.delta + t * (below.delta - above.delta);
             let mut s = walk.solver.solve_load(w, &guess);
-            s.iterations += walk.iterations;
-            if !on_branch(&above, &s) {
-                s.converged = false;
+            if !(s.converged && on_branch(&above, &s)) {
+                s = along_the_path(&mut walk, &above, &below, w).unwrap_or(Solution { converged: false, ..s });
             }
+            s.iterations += walk.iterations;
             return s;
         }
     }

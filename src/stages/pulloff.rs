@@ -41,7 +41,7 @@ pub struct BemPullOff;
 
 impl Kind for BemPullOff {
     const NAME: &'static str = "bem.pulloff";
-    const VERSION: u32 = 6;
+    const VERSION: u32 = 7;
     const DOC: &'static str =
         "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked by pseudo-arclength in approach and load) at speed V";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];
