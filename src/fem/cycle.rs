@@ -128,6 +128,21 @@ impl Cycle {
     pub fn dissipated(&self) -> f64 {
         self.work_loading - self.work_unloading
     }
+
+    /// Error estimate of `dissipated`, from the discretisation of the load path (not of the
+    /// mesh): per leg `path_work_error` (the trapezoids on the smooth pieces and where the
+    /// vertical jumps lie between computed states), plus, for a snap-through that landed at
+    /// once, its bisection bracket times the force drop.
+    pub fn dissipated_error(&self) -> f64 {
+        let leg = |leg: Leg| -> Vec<[f64; 2]> {
+            self.points.iter().filter(|p| p.leg == leg).map(|p| [p.step.delta, p.step.contact.force]).collect()
+        };
+        let snap = self
+            .buckling
+            .filter(|b| b.delta_after == b.delta)
+            .map_or(0.0, |b| (b.delta - b.delta_stable).abs() * (b.force_before - b.force_after).abs());
+        path_work_error(&leg(Leg::Loading)) + path_work_error(&leg(Leg::Unloading)) + snap
+    }
 }
 
 fn is_inverted(model: &Model, s: &Step) -> bool {
@@ -375,11 +390,40 @@ fn halving_walk<S>(
     Some(cur)
 }
 
+/// The trapezoid rule's Int F d(delta) along `path` ((delta, F) in path order).
+fn trapezoid(path: &[[f64; 2]]) -> f64 {
+    path.windows(2).map(|w| 0.5 * (w[0][1] + w[1][1]) * (w[1][0] - w[0][0]).abs()).sum()
+}
+
+/// Error estimate of `trapezoid(path)`. The path is split at its vertical jumps (two states
+/// at the same delta). On each smooth piece of at least three states, Richardson's
+/// |T - T_2| / 3 (T_2 the rule on every other state, the last one kept). Each jump may lie
+/// anywhere since the state before it: |force jump| times that delta step.
+pub fn path_work_error(path: &[[f64; 2]]) -> f64 {
+    let mut error = 0.0;
+    let mut start = 0;
+    for i in 1..=path.len() {
+        let jump = i < path.len() && path[i][0] == path[i - 1][0];
+        if jump && i >= 2 {
+            error += (path[i][1] - path[i - 1][1]).abs() * (path[i - 1][0] - path[i - 2][0]).abs();
+        }
+        if jump || i == path.len() {
+            let piece = &path[start..i];
+            if piece.len() >= 3 {
+                let mut every_other: Vec<[f64; 2]> = piece.iter().step_by(2).copied().collect();
+                if (piece.len() - 1) % 2 != 0 {
+                    every_other.push(piece[piece.len() - 1]);
+                }
+                error += (trapezoid(piece) - trapezoid(&every_other)).abs() / 3.0;
+            }
+            start = i;
+        }
+    }
+    error
+}
+
 fn work(points: &[CyclePoint]) -> f64 {
-    points
-        .windows(2)
-        .map(|w| 0.5 * (w[0].step.contact.force + w[1].step.contact.force) * (w[1].step.delta - w[0].step.delta).abs())
-        .sum()
+    trapezoid(&points.iter().map(|p| [p.step.delta, p.step.contact.force]).collect::<Vec<_>>())
 }
 
 /// Runs the cycle from the reference state.
@@ -734,6 +778,13 @@ mod tests {
         // The hysteresis loop: between the two jumps the loading force (flattened) exceeds
         // the unloading one (inverted), W = 0.030 N mm.
         assert!((c.dissipated() - 0.030).abs() < 0.005, "W = {}", c.dissipated());
+        // Its error estimate from the load path (steps, bisection brackets; here mostly the
+        // loading's 0.01 R steps over the rippled inverted branch) covers the change of W
+        // when the steps are halved.
+        let e = c.dissipated_error();
+        let fine = load_unload(&model, &plate, E, CycleOptions { steps: 60, ..options(0.3) });
+        let change = (fine.dissipated() - c.dissipated()).abs();
+        assert!(change <= e && e < 0.25 * c.dissipated(), "W error {e}, W {} -> {}", c.dissipated(), fine.dissipated());
         // The unstable branch joins the limit point to the snap-through: unstable, delta
         // rising, force between the inverted and the flattened branches.
         assert!(c.unstable.len() > 5);
@@ -809,6 +860,20 @@ mod tests {
         assert!(c.complete && c.buckling.is_none() && c.snap_back.is_none());
         assert!(c.dissipated().abs() < 1e-9 * c.work_loading, "{} of {}", c.dissipated(), c.work_loading);
         assert!(c.points.iter().all(|p| p.step.stable && !p.inverted));
+    }
+
+    #[test]
+    fn the_work_error_estimate_is_the_trapezoid_error_and_the_jump_brackets() {
+        // F = delta^2 on [0, 1] in 10 steps: the trapezoid rule errs by h^2 / 6 exactly,
+        // which Richardson's estimate recovers for a quadratic.
+        let path: Vec<[f64; 2]> = (0..=10).map(|i| [0.1 * i as f64, (0.1 * i as f64).powi(2)]).collect();
+        let exact_error = trapezoid(&path) - 1.0 / 3.0;
+        assert!((path_work_error(&path) - exact_error).abs() < 1e-12, "{}", path_work_error(&path));
+        // A linear piece (no quadrature error) that drops by 2 at delta = 1, its last state
+        // before the drop at 0.8 and nothing after: the jump may lie anywhere in (0.8, 1].
+        let jump = [[0.0, 1.0], [0.4, 2.0], [0.8, 3.0], [1.0, 3.5], [1.0, 1.5], [1.2, 1.7], [1.4, 1.9]];
+        assert!((path_work_error(&jump) - 2.0 * 0.2).abs() < 1e-12, "{}", path_work_error(&jump));
+        assert_eq!(path_work_error(&path[..2]), 0.0);
     }
 
     #[test]

@@ -277,8 +277,7 @@ pub fn descend_loaded(
         // The unshifted Newton step exists (by Cholesky) exactly when the state is stable. It
         // is needed as the step (no shift) or for the verdict (residual within tolerance):
         // under a shift, far from a minimum, its factorisation would be wasted.
-        let mut newton =
-            if shift == 0.0 || cur.norm <= tol { model.solve_definite(&cur.tangent, &rhs) } else { None };
+        let mut newton = if shift == 0.0 || cur.norm <= tol { model.solve_definite(&cur.tangent, &rhs) } else { None };
         let stable = newton.is_some();
         if (cur.norm <= tol && stable) || iterations >= max_iterations {
             break stable;

@@ -221,7 +221,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 18;
+    const VERSION: u32 = 19;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -304,6 +304,12 @@ impl Kind for FemIndent {
             .with_f64("delta_landing_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta_after / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
             .with_f64("W_bar", vec![if c.complete { finite(c.dissipated() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n])
+            // The load path's share of W's error (`Cycle::dissipated_error`; the mesh's is not
+            // estimated).
+            .with_f64(
+                "W_error_bar",
+                vec![if c.complete { finite(c.dissipated_error() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n],
+            )
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())

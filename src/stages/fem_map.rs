@@ -214,7 +214,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 16;
+    const VERSION: u32 = 17;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -243,6 +243,7 @@ impl Kind for FemBuckling {
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
         // The loop area only for a complete cycle (a partial one has no closed integral).
         let w = if p.dissipation && c.complete { c.dissipated() } else { 0.0 };
+        let w_error = if p.dissipation && c.complete { c.dissipated_error() } else { 0.0 };
         Ok(Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
@@ -263,6 +264,10 @@ impl Kind for FemBuckling {
             .with_f64("delta_landing_over_R", vec![finite(b.map_or(0.0, |j| j.delta_after / m.R))])
             .with_f64("W_bar", vec![finite(w / (m.E * h.powi(3)))])
             .with_f64("W_Nmm", vec![finite(w)])
+            // The load path's share of W's error (`Cycle::dissipated_error`; the mesh's is not
+            // estimated).
+            .with_f64("W_error_bar", vec![finite(w_error / (m.E * h.powi(3)))])
+            .with_f64("W_error_Nmm", vec![finite(w_error)])
             .with("complete", ColumnData::Bool(vec![c.complete]))
             .with("max_iterations", ColumnData::I64(vec![iterations as i64]))
             .with_f64("max_residual", vec![finite(residual)])

@@ -65,6 +65,10 @@ pub struct DataLayer {
     /// Scale the y values by this factor.
     #[serde(default = "one")]
     pub y_scale: f64,
+    /// Column of the y values' error estimates (in y's units, scaled by `y_scale` too):
+    /// drawn as error bars y - e .. y + e and tabulated as `y_error`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_error: Option<String>,
     /// Palette index (0 black, 1 blue, 2 red, 3 green, 4 purple, 5 orange, ...) of the
     /// table's first group; the k-th group (in table order, whether `filter` keeps it or not)
     /// takes the k-th next colour. Default: continue the palette after the previous curves.
@@ -169,19 +173,25 @@ struct Series {
     x_name: String,
     y_name: String,
     points: Vec<(f64, f64)>,
+    /// Error estimates of the points' y (empty: none drawn).
+    errors: Vec<f64>,
     /// Indices of `points` before which the line is broken.
     breaks: Vec<usize>,
 }
 
 /// One group's curve while a layer's rows are read: its first row, its points, where its
-/// line breaks, and whether rows were left out since its last point.
-type Curve = (usize, Vec<(f64, f64)>, Vec<usize>, bool);
+/// line breaks, whether rows were left out since its last point, and its points' errors.
+type Curve = (usize, Vec<(f64, f64)>, Vec<usize>, bool, Vec<f64>);
 
 /// Curves of one data layer, in the order their group values first appear.
 fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
     let t = inputs.table(&layer.from)?;
     let xs = t.f64_column(&layer.x).with_context(|| format!("layer from `{}`", layer.from))?;
     let ys = t.f64_column(&layer.y).with_context(|| format!("layer from `{}`", layer.from))?;
+    let es = match &layer.y_error {
+        Some(e) => Some(t.f64_column(e).with_context(|| format!("y_error of layer from `{}`", layer.from))?),
+        None => None,
+    };
     let mut keep = vec![true; t.n_rows()];
     for (col, value) in &layer.filter {
         let c = t.f64_column(col).with_context(|| format!("filter of layer from `{}`", layer.from))?;
@@ -205,13 +215,16 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
         }
         if !groups.contains_key(&gkey) {
             order.push(gkey.clone());
-            groups.insert(gkey.clone(), (row, Vec::new(), Vec::new(), false));
+            groups.insert(gkey.clone(), (row, Vec::new(), Vec::new(), false, Vec::new()));
         }
         let g = groups.get_mut(&gkey).unwrap();
         if std::mem::take(&mut g.3) {
             g.2.push(g.1.len());
         }
         g.1.push((xs[row], ys[row] * layer.y_scale));
+        if let Some(es) = &es {
+            g.4.push((es[row] * layer.y_scale).abs());
+        }
     }
     // A curve's colour follows its group's place among all the table's groups, kept or
     // not, so that layers with the same `color` pair the same groups whatever they filter.
@@ -226,7 +239,7 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
         .into_iter()
         .map(|g| {
             let i = palette_order.iter().position(|k| *k == g).unwrap_or(0);
-            let (first_row, points, breaks, _) = groups.remove(&g).unwrap();
+            let (first_row, points, breaks, _, errors) = groups.remove(&g).unwrap();
             let mut label = layer.label.clone();
             for (name, col) in &t.columns {
                 let pat = format!("{{{name}}}");
@@ -241,6 +254,7 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
                 x_name: layer.x.clone(),
                 y_name: layer.y.clone(),
                 points,
+                errors,
                 breaks,
             }
         })
@@ -263,6 +277,7 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
         x_name: "guide".into(),
         y_name: "guide".into(),
         points,
+        errors: Vec::new(),
         breaks: Vec::new(),
     }
 }
@@ -435,6 +450,19 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                 }
             }
             runs.retain(|r| !r.is_empty());
+            // Error bars, clipped to the axes (on a log axis a bar reaching zero or below
+            // runs to the bottom).
+            let bars: Vec<_> = s
+                .points
+                .iter()
+                .zip(&s.errors)
+                .filter(|&(&(x, y), &e)| e > 0.0 && in_view(&(tx(x), ty(y))))
+                .map(|(&(x, y), &e)| {
+                    let lo = if p.log_y && y - e <= 0.0 { y0 } else { ty(y - e).max(y0) };
+                    ErrorBar::new_vertical(tx(x), lo, ty(y), ty(y + e).min(y1), style.stroke_width(1), 6)
+                })
+                .collect();
+            chart.draw_series(bars).map_err(err)?;
             let legend_style = style;
             for (ri, run) in runs.into_iter().enumerate() {
                 let anno = match s.style {
@@ -505,7 +533,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 8;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
@@ -572,7 +600,13 @@ impl Kind for Figure {
         // On log axes, points at or below zero cannot be drawn: leave them out of both the
         // figure and its table.
         for s in &mut series {
-            s.points.retain(|&(x, y)| (!p.log_x || x > 0.0) && (!p.log_y || y > 0.0));
+            let drawable = |&(x, y): &(f64, f64)| (!p.log_x || x > 0.0) && (!p.log_y || y > 0.0);
+            if !s.errors.is_empty() {
+                let kept: Vec<bool> = s.points.iter().map(drawable).collect();
+                let mut k = kept.iter();
+                s.errors.retain(|_| *k.next().unwrap());
+            }
+            s.points.retain(drawable);
         }
         let svg = render(p, &series)?;
         let rows = series.iter().flat_map(|s| s.points.iter().map(move |&(x, y)| (s, x, y)));
@@ -582,6 +616,14 @@ impl Kind for Figure {
             .with_f64("y", rows.clone().map(|(_, _, y)| y).collect())
             .with("x_name", ColumnData::Str(rows.clone().map(|(s, _, _)| s.x_name.clone()).collect()))
             .with("y_name", ColumnData::Str(rows.map(|(s, _, _)| s.y_name.clone()).collect()));
+        // The error column only where a layer has errors (0 for the other series' points).
+        let table = if series.iter().any(|s| !s.errors.is_empty()) {
+            let errors =
+                series.iter().flat_map(|s| (0..s.points.len()).map(|i| s.errors.get(i).copied().unwrap_or(0.0)));
+            table.with_f64("y_error", errors.collect())
+        } else {
+            table
+        };
         let mut out = Output::from(table);
         out.artifacts.insert("svg".into(), svg);
         Ok(out)
@@ -607,6 +649,7 @@ mod tests {
             filter: BTreeMap::new(),
             gaps: false,
             y_scale: 1.0,
+            y_error: None,
             color,
         }
     }
@@ -651,6 +694,40 @@ mod tests {
         let fig = test_figure(vec![Layer::Data(l.clone())]);
         let lines = |series: &[Series]| render(&fig, series).unwrap().matches("<polyline").count();
         assert_eq!(lines(&broken), lines(&joined) + 1);
+    }
+
+    #[test]
+    fn error_bars_are_drawn_and_tabulated_with_their_points() {
+        // Two groups, errors in column `e` (scaled with y); on a log y axis the point at
+        // y <= 0 is dropped together with its error, and a bar reaching below zero runs to
+        // the bottom of the axes.
+        let t = Table::new()
+            .with_f64("x", vec![1.0, 2.0, 3.0, 1.0, 2.0])
+            .with_f64("a", vec![1.0, 2.0, -1.0, 4.0, 5.0])
+            .with_f64("e", vec![0.1, 3.0, 0.1, 0.0, 0.5])
+            .with_f64("g", vec![0.0, 0.0, 0.0, 1.0, 1.0]);
+        let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+        let mut l = layer("a", None);
+        (l.y_error, l.y_scale) = (Some("e".into()), 2.0);
+        let series = data_series(&l, &inputs).unwrap();
+        assert_eq!(series[0].errors, vec![0.2, 6.0, 0.2]);
+        assert_eq!(series[1].errors, vec![0.0, 1.0]);
+        let mut fig = test_figure(vec![Layer::Data(l.clone())]);
+        fig.log_y = true;
+        let out = Figure::run(&fig, &inputs).unwrap();
+        assert_eq!(out.table.f64_column("y_error").unwrap(), vec![0.2, 6.0, 0.0, 1.0]);
+        // Three bars (a zero error draws none), each a stem and two caps, more than without.
+        let strokes = |svg: &str| svg.matches("<line").count() + svg.matches("<polyline").count();
+        l.y_error = None;
+        let plain = Figure::run(&test_figure(vec![Layer::Data(l.clone())]), &inputs).unwrap();
+        let mut plain_fig = test_figure(vec![Layer::Data(l.clone())]);
+        plain_fig.log_y = true;
+        let plain_log = Figure::run(&plain_fig, &inputs).unwrap();
+        assert!(plain.table.f64_column("y_error").is_err());
+        assert_eq!(strokes(&out.artifacts["svg"]) - strokes(&plain_log.artifacts["svg"]), 3 * 3);
+        l.y_error = Some("missing".into());
+        let e = data_series(&l, &inputs).err().unwrap();
+        assert!(format!("{e:#}").contains("y_error"), "{e:#}");
     }
 
     #[test]
