@@ -411,7 +411,7 @@ pub fn path_work_error(path: &[[f64; 2]]) -> f64 {
             let piece = &path[start..i];
             if piece.len() >= 3 {
                 let mut every_other: Vec<[f64; 2]> = piece.iter().step_by(2).copied().collect();
-                if (piece.len() - 1) % 2 != 0 {
+                if piece.len().is_multiple_of(2) {
                     every_other.push(piece[piece.len() - 1]);
                 }
                 error += (trapezoid(piece) - trapezoid(&every_other)).abs() / 3.0;
