@@ -7,7 +7,7 @@ use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Jump, Leg};
 use crate::fem::indent::Step;
-use crate::fem::mesh::{ShellMesh, DEFAULT_MESH_REL_ERROR};
+use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -221,7 +221,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 19;
+    const VERSION: u32 = 20;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -248,7 +248,7 @@ impl Kind for FemIndent {
         }
         let f_bar = sh.R / (sh.E * sh.h.powi(3));
         let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
-        let mesh_error = if default_mesh { DEFAULT_MESH_REL_ERROR } else { 0.0 };
+        let mesh_error = if default_mesh { default_mesh_rel_error(p.mu) } else { 0.0 };
         let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, _, s)| finite(f(s))).collect::<Vec<f64>>();
         let n = rows.len();
         let leg_id = |l: &str| match l {
@@ -297,7 +297,7 @@ impl Kind for FemIndent {
             .with_f64("F_buckling_bar", vec![finite(c.buckling.map_or(0.0, |b| b.force_before * f_bar)); n])
             .with_f64(
                 "F_buckling_error_bar",
-                vec![finite(c.buckling.map_or(0.0, |b| snap_force_error(&b, default_mesh) * f_bar)); n],
+                vec![finite(c.buckling.map_or(0.0, |b| snap_force_error(&b, default_mesh, p.mu) * f_bar)); n],
             )
             .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
             // Where the snap-through landed on the inverted branch (0: it did not).
@@ -318,9 +318,10 @@ impl Kind for FemIndent {
 
 /// Error estimate of a snap-through force: the bisection's bracket (the force rises from
 /// the last stable state to the first unstable one) plus, on the default mesh, its measured
-/// resolution error (`fem::mesh::DEFAULT_MESH_REL_ERROR`; other meshes: the bracket only).
-pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool) -> f64 {
-    let mesh = if default_mesh { DEFAULT_MESH_REL_ERROR } else { 0.0 };
+/// resolution error at friction `mu` (`fem::mesh::default_mesh_rel_error`; other meshes:
+/// the bracket only).
+pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool, mu: f64) -> f64 {
+    let mesh = if default_mesh { default_mesh_rel_error(mu) } else { 0.0 };
     (j.force_unstable - j.force_before).abs() + mesh * j.force_before.abs()
 }
 

@@ -214,7 +214,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 17;
+    const VERSION: u32 = 18;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -253,7 +253,7 @@ impl Kind for FemBuckling {
             .with_f64(
                 "F_buckling_error_bar",
                 vec![finite(
-                    b.map_or(0.0, |j| snap_force_error(&j, m.n_meridian.is_none() && m.n_thickness == 2) * fb),
+                    b.map_or(0.0, |j| snap_force_error(&j, m.n_meridian.is_none() && m.n_thickness == 2, p.mu) * fb),
                 )],
             )
             .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
