@@ -399,7 +399,7 @@ fn trapezoid(path: &[[f64; 2]]) -> f64 {
 /// at the same delta). On each smooth piece of at least three states, Richardson's
 /// |T - T_2| / 3 (T_2 the rule on every other state, the last one kept). Each jump may lie
 /// anywhere since the state before it: |force jump| times that delta step.
-pub fn path_work_error(path: &[[f64; 2]]) -> f64 {
+fn path_work_error(path: &[[f64; 2]]) -> f64 {
     let mut error = 0.0;
     let mut start = 0;
     for i in 1..=path.len() {

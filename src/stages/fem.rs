@@ -249,6 +249,13 @@ impl Kind for FemIndent {
         let f_bar = sh.R / (sh.E * sh.h.powi(3));
         let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
         let mesh_error = if default_mesh { default_mesh_rel_error(p.mu) } else { 0.0 };
+        // W and its error for a complete cycle only (a partial one has no closed integral).
+        let w_scale = sh.E * sh.h.powi(3);
+        let (w_bar, w_error_bar) = if c.complete {
+            (finite(c.dissipated() / w_scale), finite(c.dissipated_error() / w_scale))
+        } else {
+            (0.0, 0.0)
+        };
         let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, _, s)| finite(f(s))).collect::<Vec<f64>>();
         let n = rows.len();
         let leg_id = |l: &str| match l {
@@ -303,13 +310,10 @@ impl Kind for FemIndent {
             // Where the snap-through landed on the inverted branch (0: it did not).
             .with_f64("delta_landing_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta_after / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
-            .with_f64("W_bar", vec![if c.complete { finite(c.dissipated() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n])
+            .with_f64("W_bar", vec![w_bar; n])
             // The load path's share of W's error (`Cycle::dissipated_error`; the mesh's is not
             // estimated).
-            .with_f64(
-                "W_error_bar",
-                vec![if c.complete { finite(c.dissipated_error() / (sh.E * sh.h.powi(3))) } else { 0.0 }; n],
-            )
+            .with_f64("W_error_bar", vec![w_error_bar; n])
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())

@@ -242,8 +242,8 @@ impl Kind for FemBuckling {
         let (iterations, residual) =
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
         // The loop area only for a complete cycle (a partial one has no closed integral).
-        let w = if p.dissipation && c.complete { c.dissipated() } else { 0.0 };
-        let w_error = if p.dissipation && c.complete { c.dissipated_error() } else { 0.0 };
+        let (w, w_error) =
+            if p.dissipation && c.complete { (c.dissipated(), c.dissipated_error()) } else { (0.0, 0.0) };
         Ok(Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
