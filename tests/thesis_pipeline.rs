@@ -3,12 +3,8 @@
 //! from the published Parquet tables.
 
 mod common;
-use common::{column, Scratch};
+use common::{column, strings, Scratch};
 use polars::prelude::*;
-
-fn strings(df: &DataFrame, name: &str) -> Vec<String> {
-    df.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap_or_default().to_string()).collect()
-}
 
 fn row_where(df: &DataFrame, key: &str, value: f64, col: &str) -> f64 {
     let keys = column(df, key);

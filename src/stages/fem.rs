@@ -326,7 +326,13 @@ impl Kind for FemIndent {
 /// the bracket only).
 pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool, mu: f64) -> f64 {
     let mesh = if default_mesh { default_mesh_rel_error(mu) } else { 0.0 };
-    (j.force_unstable - j.force_before).abs() + mesh * j.force_before.abs()
+    snap_bracket(j) + mesh * j.force_before.abs()
+}
+
+/// The bisection's bracket of a snap-through force: from the last stable state to the
+/// first unstable one.
+pub(crate) fn snap_bracket(j: &Jump) -> f64 {
+    (j.force_unstable - j.force_before).abs()
 }
 
 /// One state to draw (thesis Fig. 3.3: I Hertzian, II intermediate, III post-buckling).

@@ -7,12 +7,12 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
-use super::fem::snap_force_error;
+use super::fem::snap_bracket;
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::critical::{bracket, probe, retrying};
-use crate::fem::cycle::{load_unload, CycleOptions, Snap};
-use crate::fem::mesh::ShellMesh;
+use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Jump, Snap};
+use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -148,11 +148,25 @@ impl MapModel {
         h_over_r * self.R
     }
 
+    /// Elements along the meridian at `h_over_r` (given, or the default rule).
+    fn meridian_elements(&self, h_over_r: f64) -> usize {
+        self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h(h_over_r), self.g0))
+    }
+
     fn shell(&self, h_over_r: f64) -> Model {
-        let h = self.h(h_over_r);
-        let n = self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, h, self.g0));
-        let mesh = ShellMesh::hemisphere(self.R, h, n, self.n_thickness, self.grading);
+        self.shell_with(h_over_r, self.meridian_elements(h_over_r))
+    }
+
+    /// The shell with `n_meridian` elements along the meridian.
+    fn shell_with(&self, h_over_r: f64, n_meridian: usize) -> Model {
+        let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), n_meridian, self.n_thickness, self.grading);
         Model::new(mesh, self.E, self.nu, Base::Clamped)
+    }
+
+    /// The mesh is the default one (whose resolution error is declared,
+    /// `fem::mesh::default_mesh_rel_error`).
+    fn default_mesh(&self) -> bool {
+        self.n_meridian.is_none() && self.n_thickness == 2
     }
 
     fn plate(&self, model: &Model, h_over_r: f64, gamma_over_eh: f64, mu: f64) -> Plate {
@@ -204,8 +218,48 @@ pub struct BucklingParams {
     /// Also unload, for the dissipated energy W (default true; false stops at the snap).
     #[serde(default = "default_true")]
     pub dissipation: bool,
+    /// Estimate the mesh's share of the errors of F_buckling and W at this point by a second
+    /// cycle on twice the meridian elements, run alongside (`MeshStudy`; default false: the
+    /// declared error of the default mesh for F, none for others). Three to four times the
+    /// CPU time.
+    #[serde(default)]
+    pub mesh_study: bool,
     #[serde(default)]
     pub model: MapModel,
+}
+
+/// The mesh's share of the errors of F_buckling and W on n meridian elements, from the
+/// cycles on n and 2n (`BucklingParams::mesh_study`): twice the differences, Richardson's
+/// bound |X(n) - X(2n)| 2^p / (2^p - 1) at first order p = 1. The elements are quadratic,
+/// but the snap's force comes from a bisection on a discrete stability test, and its mesh
+/// sequence is not smooth (measured, h/R = 0.06, mu = 0, 3 elements through the thickness,
+/// grading 8, steps of 0.01 R: F_bar 9.107, 9.314, 9.352, 9.258, 9.304 on 30 to 480
+/// elements; at mu = 0.5: 11.673, 11.588, 11.960 on 30, 60, 120), so the second-order
+/// factor 4/3 would not be safe. The companion is the finer mesh, not the coarser: a
+/// coarse mesh is often outside the asymptotic range (at mu = 0.5 the 30-element value
+/// lies 0.08 from the 60-element one, whose error is 0.35), and then no estimate holds. When
+/// the two meshes disagree on whether the shell snaps, or either cycle is incomplete,
+/// nothing is known: the errors are the larger |F| and |W| of the two and `agrees` is
+/// false.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct MeshStudy {
+    f_error: f64,
+    w_error: f64,
+    agrees: bool,
+}
+
+impl MeshStudy {
+    /// From (buckled, F, W, complete) on the mesh and on its companion with twice the
+    /// meridian elements.
+    fn of(mesh: (bool, f64, f64, bool), finer: (bool, f64, f64, bool)) -> MeshStudy {
+        let agrees = mesh.0 == finer.0 && mesh.3 && finer.3;
+        if agrees {
+            MeshStudy { f_error: 2.0 * (mesh.1 - finer.1).abs(), w_error: 2.0 * (mesh.2 - finer.2).abs(), agrees }
+        } else {
+            let largest = |a: f64, b: f64| a.abs().max(b.abs());
+            MeshStudy { f_error: largest(mesh.1, finer.1), w_error: largest(mesh.2, finer.2), agrees }
+        }
+    }
 }
 
 /// One cycle of the map: does the loading snap before delta_max, at what force, and the
@@ -214,7 +268,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 18;
+    const VERSION: u32 = 19;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -232,30 +286,51 @@ impl Kind for FemBuckling {
     fn run(p: &BucklingParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let m = &p.model;
-        let model = m.shell(p.h_over_R);
-        let plate = m.plate(&model, p.h_over_R, p.gamma_over_Eh, p.mu);
-        let c = load_unload(&model, &plate, m.E, m.options(p.dissipation));
+        let n = m.meridian_elements(p.h_over_R);
+        // The cycle on `n` meridian elements: (buckled, F, W and its path error, complete),
+        // the snap and the cycle.
+        let cycle_on = |n: usize| {
+            let model = m.shell_with(p.h_over_R, n);
+            let plate = m.plate(&model, p.h_over_R, p.gamma_over_Eh, p.mu);
+            let c = load_unload(&model, &plate, m.E, m.options(p.dissipation));
+            // Under `snap: landing` a loss of stability that never lands is no snap.
+            let b = c.buckling.filter(|j| Snap::from(m.snap).counts(j));
+            // The loop area only for a complete cycle (a partial one has no closed integral).
+            let (w, w_error) =
+                if p.dissipation && c.complete { (c.dissipated(), c.dissipated_error()) } else { (0.0, 0.0) };
+            (b, w, w_error, c)
+        };
+        let ((b, w, w_error, c), finer) = if p.mesh_study {
+            let (this, finer) = rayon::join(|| cycle_on(n), || cycle_on(2 * n));
+            (this, Some(finer))
+        } else {
+            (cycle_on(n), None)
+        };
+        let summary =
+            |b: &Option<Jump>, w: f64, c: &Cycle| (b.is_some(), b.map_or(0.0, |j| j.force_before), w, c.complete);
+        let study = finer.as_ref().map(|(fb, fw, _, fc)| MeshStudy::of(summary(&b, w, &c), summary(fb, *fw, fc)));
         let fb = m.f_bar(p.h_over_R);
-        // Under `snap: landing` a loss of stability that never lands is no snap.
-        let b = c.buckling.filter(|j| Snap::from(m.snap).counts(j));
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
-        // The loop area only for a complete cycle (a partial one has no closed integral).
-        let (w, w_error) =
-            if p.dissipation && c.complete { (c.dissipated(), c.dissipated_error()) } else { (0.0, 0.0) };
+        // The mesh's share: the study's if one ran, else the declared error of the default
+        // mesh (F only), else none.
+        let (f_mesh, w_mesh, source) = match study {
+            Some(st) => (st.f_error, st.w_error, "study"),
+            None if m.default_mesh() => {
+                (b.map_or(0.0, |j| default_mesh_rel_error(p.mu) * j.force_before.abs()), 0.0, "declared")
+            }
+            None => (0.0, 0.0, "none"),
+        };
         Ok(Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
             .with_f64("mu", vec![p.mu])
             .with("buckled", ColumnData::Bool(vec![b.is_some()]))
             .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
-            .with_f64(
-                "F_buckling_error_bar",
-                vec![finite(
-                    b.map_or(0.0, |j| snap_force_error(&j, m.n_meridian.is_none() && m.n_thickness == 2, p.mu) * fb),
-                )],
-            )
+            // The bisection's bracket plus the mesh's share.
+            .with_f64("F_buckling_error_bar", vec![finite(b.map_or(0.0, |j| (snap_bracket(&j) + f_mesh) * fb))])
+            .with_f64("F_buckling_mesh_error_bar", vec![finite(f_mesh * fb)])
             .with_f64("delta_buckling_over_R", vec![finite(b.map_or(0.0, |j| j.delta / m.R))])
             .with_f64("delta_buckling_error_over_R", vec![finite(b.map_or(0.0, |j| (j.delta - j.delta_stable) / m.R))])
             .with_f64("r_over_R", vec![finite(b.map_or(0.0, |j| j.radius_before / m.R))])
@@ -264,10 +339,15 @@ impl Kind for FemBuckling {
             .with_f64("delta_landing_over_R", vec![finite(b.map_or(0.0, |j| j.delta_after / m.R))])
             .with_f64("W_bar", vec![finite(w / (m.E * h.powi(3)))])
             .with_f64("W_Nmm", vec![finite(w)])
-            // The load path's share of W's error (`Cycle::dissipated_error`; the mesh's is not
-            // estimated).
-            .with_f64("W_error_bar", vec![finite(w_error / (m.E * h.powi(3)))])
-            .with_f64("W_error_Nmm", vec![finite(w_error)])
+            // The load path's share of W's error (`Cycle::dissipated_error`) plus the mesh's.
+            .with_f64("W_error_bar", vec![finite((w_error + w_mesh) / (m.E * h.powi(3)))])
+            .with_f64("W_error_Nmm", vec![finite(w_error + w_mesh)])
+            .with_f64("W_mesh_error_Nmm", vec![finite(w_mesh)])
+            .with("n_meridian", ColumnData::I64(vec![n as i64]))
+            // Where the mesh's share comes from: `study` (2 n elements run too), `declared`
+            // (the default mesh's measured error, F only) or `none`.
+            .with("mesh_error_source", ColumnData::Str(vec![source.to_string()]))
+            .with("mesh_study_agrees", ColumnData::Bool(vec![study.is_none_or(|st| st.agrees)]))
             .with("complete", ColumnData::Bool(vec![c.complete]))
             .with("max_iterations", ColumnData::I64(vec![iterations as i64]))
             .with_f64("max_residual", vec![finite(residual)])
@@ -548,4 +628,28 @@ impl Kind for FemGammaCMap {
 
 pub fn register(r: &mut Registry) {
     r.add::<FemBuckling>().add::<FemGammaC>().add::<FemBucklingLimit>().add::<FemGammaCMap>();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::MeshStudy;
+
+    #[test]
+    fn the_mesh_study_bounds_the_error_by_twice_the_difference_and_knows_when_it_knows_nothing() {
+        // Agreeing meshes: twice the differences (the first-order Richardson bound).
+        let st = MeshStudy::of((true, 9.314, 0.0206, true), (true, 9.352, 0.0194, true));
+        assert!((st.f_error - 0.076).abs() < 1e-12 && (st.w_error - 0.0024).abs() < 1e-12 && st.agrees, "{st:?}");
+        // One mesh snaps and the other does not, or a cycle is incomplete: the larger |F|
+        // and |W| of the two.
+        for (mesh, finer) in
+            [((true, -9.3, 0.02, true), (false, 0.0, 0.01, true)), ((false, 0.0, 0.01, true), (true, 9.3, 0.02, true))]
+        {
+            assert_eq!(MeshStudy::of(mesh, finer), MeshStudy { f_error: 9.3, w_error: 0.02, agrees: false });
+        }
+        let st = MeshStudy::of((true, 9.2, 0.02, true), (true, 9.3, 0.01, false));
+        assert_eq!(st, MeshStudy { f_error: 9.3, w_error: 0.02, agrees: false });
+        // Neither snaps: F is 0 on both, W's difference stands.
+        let st = MeshStudy::of((false, 0.0, 1.5, true), (false, 0.0, 1.4, true));
+        assert!(st.f_error == 0.0 && (st.w_error - 0.2).abs() < 1e-12 && st.agrees);
+    }
 }

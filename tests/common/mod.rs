@@ -17,6 +17,11 @@ pub fn column(df: &DataFrame, name: &str) -> Vec<f64> {
     c.f64().unwrap().into_no_null_iter().collect()
 }
 
+/// A string column of a published table.
+pub fn strings(df: &DataFrame, name: &str) -> Vec<String> {
+    df.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap_or_default().to_string()).collect()
+}
+
 impl Scratch {
     pub fn new(name: &str) -> Scratch {
         let dir = std::env::temp_dir().join(format!("repro-test-{name}-{}", std::process::id()));
