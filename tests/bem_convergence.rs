@@ -1,6 +1,9 @@
 //! Convergence studies and stress tests of the Chapter 4 boundary element solver.
 
-use repro::bem::solver::{solve, solve_to_tolerance, solve_with_estimate, starting_mesh, Mesh, Params};
+use repro::bem::solver::{
+    domain_rel_error, solve, solve_to_tolerance, solve_to_tolerance_shares, starting_mesh, Mesh, Params, DOMAIN_SAFETY,
+    MESH_SAFETY,
+};
 
 fn point() -> Params {
     Params::sls(1.0, 1.0, 0.1, 1.0)
@@ -31,19 +34,48 @@ fn friction_converges_in_the_domain_length() {
     assert!(d2 < 0.1 * d1 && d2 < 2e-4 * m[2], "{m:?}");
 }
 
+/// `solve_to_tolerance`'s mesh share alone (the references below share the domain).
+fn mesh_share(p: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (repro::bem::solver::Solution, f64) {
+    let (s, shares) = solve_to_tolerance_shares(p, mesh, rel_tol, n_max);
+    (s, shares.mesh)
+}
+
 #[test]
 fn the_error_estimate_brackets_the_true_error() {
+    // The mesh's share against a finer mesh of the same domain.
     let reference = mu(&point(), Mesh { n: 1200, half_length: 6.0 });
-    let (s, estimate) = solve_with_estimate(&point(), Mesh { n: 300, half_length: 6.0 });
+    let (s, estimate) = mesh_share(&point(), Mesh { n: 300, half_length: 6.0 }, f64::INFINITY, 300);
     let error = (s.friction().mu_star - reference).abs();
     assert!(error < 3.0 * estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
     // The default resolution: the starting mesh for 1e-3, refined until the estimate meets
     // it; the answer then lies within that of the converged value (2.08757 on L = 6).
     let m = starting_mesh(&point(), 1e-3);
-    let (s, estimate) = solve_to_tolerance(&point(), m, 1e-3, 16_000);
+    let (s, estimate) = mesh_share(&point(), m, 1e-3, 16_000);
     let mu = s.friction().mu_star;
     assert!(estimate <= 1e-3 * mu, "{m:?}: {estimate}");
     assert!((mu - 2.08757).abs() < 1e-3 * mu, "{m:?}: {mu}");
+}
+
+#[test]
+fn the_reported_estimate_covers_the_domain_and_the_mesh() {
+    // What a table reports: MESH_SAFETY times the mesh's share plus DOMAIN_SAFETY times the
+    // domain's. On L = 6 (n = 300) against the value on a domain of 24 with half the
+    // element size (n = 2400): the reported estimate covers
+    // the whole error and stays within 10 times it; the bare mesh share alone does not
+    // cover it (the truncated tail's share).
+    let p = point();
+    let m = Mesh { n: 300, half_length: 6.0 };
+    let (s, shares) = solve_to_tolerance_shares(&p, m, f64::INFINITY, 300);
+    let (s2, reported) = solve_to_tolerance(&p, m, f64::INFINITY, 300);
+    assert_eq!(s.friction().mu_star, s2.friction().mu_star);
+    assert!((reported - (MESH_SAFETY * shares.mesh + DOMAIN_SAFETY * shares.domain)).abs() <= 1e-15 * reported);
+    let mu_star = s.friction().mu_star;
+    assert!((shares.domain - mu_star * domain_rel_error(&p, 6.0)).abs() <= 1e-15 * mu_star);
+    let converged = mu(&p, Mesh { n: 2400, half_length: 24.0 });
+    let error = (mu_star - converged).abs();
+    // Measured: error 1.54e-3, mesh share 6.0e-4, domain share 2.4e-3, reported 6.6e-3.
+    assert!(shares.mesh < error, "{shares:?}");
+    assert!(error <= reported && reported < 10.0 * error, "error {error:e}, reported {reported:e} ({shares:?})");
 }
 
 #[test]
@@ -92,14 +124,14 @@ fn extreme_parameters_give_a_result_or_an_explicit_failure_never_nan() {
 fn the_mesh_is_refined_until_the_requested_accuracy_is_met() {
     // From n = 150: the estimate is 2.9e-4 relative at n = 300, 7.5e-5 at n = 600
     // (measured sequence 2.08518, 2.08698, 2.08745, 2.08757): asking 1e-4 stops at n = 600.
-    let (s, estimate) = solve_to_tolerance(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-4, 6000);
+    let (s, estimate) = mesh_share(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-4, 6000);
     let mu = s.friction().mu_star;
     assert_eq!(s.mesh.n, 600);
     assert!(estimate <= 1e-4 * mu);
     let reference = 2.08757;
     assert!((mu - reference).abs() < 2.0 * estimate + 2e-5, "{mu} vs {reference}, estimate {estimate}");
     // A cap on n ends the refinement and reports the estimate reached.
-    let (capped, est) = solve_to_tolerance(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-6, 300);
+    let (capped, est) = mesh_share(&point(), Mesh { n: 150, half_length: 6.0 }, 1e-6, 300);
     assert_eq!(capped.mesh.n, 300);
     assert!(est > 1e-6 * capped.friction().mu_star);
 }
@@ -115,7 +147,7 @@ fn the_maximum_over_speed_converges_and_its_error_estimate_is_honest() {
     for (lambda, expected) in [(0.3, 16.525), (3.0, 99.397)] {
         let base = Params::sls(lambda, 0.1, 0.1, 1.0);
         let at = |tol: f64| {
-            max_over_speed(&base, 0.1, 100.0, 9, 0.01, |p| solve_to_tolerance(p, starting_mesh(p, tol), tol, 64_000))
+            max_over_speed(&base, 0.1, 100.0, 9, 0.01, |p| mesh_share(p, starting_mesh(p, tol), tol, 64_000))
         };
         let (a, b) = (at(1e-3), at(1e-4));
         assert!(a.all_converged && b.all_converged);

@@ -32,6 +32,12 @@ pub struct ParetoParams {
     pub tolerance: f64,
     /// The candidate that the thesis pipeline uses (its defaults).
     pub default: String,
+    /// The candidates' column holding the error estimate of `value` (absolute, in its
+    /// units), if any: each candidate is then checked against the reference, with the
+    /// columns `estimate_covers` (the fraction of its points whose actual error is within
+    /// the estimate) and `error_over_estimate` (the largest actual error over estimate).
+    #[serde(default)]
+    pub error: Option<String>,
 }
 
 fn rows_by_point(t: &Table, stage: &str, match_on: &[String]) -> Result<Vec<Vec<f64>>> {
@@ -50,7 +56,7 @@ pub struct Pareto;
 
 impl Kind for Pareto {
     const NAME: &'static str = "bench.pareto";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Run time against error: per solver configuration, max relative error vs a reference, wall time, Pareto front";
     type Params = ParetoParams;
@@ -89,14 +95,20 @@ impl Kind for Pareto {
         };
         let ref_ok = converged_col(rt);
         let (mut error, mut time, mut ok, mut n_points) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut covers, mut over) = (Vec::new(), Vec::new());
         for c in &p.candidates {
             let t = inputs.table(c)?;
             let points = rows_by_point(t, c, &p.match_on)?;
             let values = t.f64_column(&p.value).with_context(|| format!("candidate `{c}`"))?;
             let walls = t.f64_column("wall_time_s").with_context(|| format!("candidate `{c}`"))?;
             let conv = converged_col(t);
+            let estimates = match &p.error {
+                Some(col) => Some(t.f64_column(col).with_context(|| format!("candidate `{c}`: error column"))?),
+                None => None,
+            };
             let mut worst: f64 = 0.0;
             let mut all_ok = true;
+            let (mut covered, mut worst_ratio) = (0usize, 0.0f64);
             for (r, pt) in points.iter().enumerate() {
                 let Some(j) = ref_points.iter().position(|q| same_point(pt, q)) else {
                     bail!("candidate `{c}` row {r}: no reference point with {:?} = {pt:?}", p.match_on);
@@ -106,7 +118,15 @@ impl Kind for Pareto {
                 }
                 worst = worst.max(((values[r] - ref_values[j]) / ref_values[j]).abs());
                 all_ok &= conv[r];
+                if let Some(est) = &estimates {
+                    let actual = (values[r] - ref_values[j]).abs();
+                    covered += usize::from(actual <= est[r]);
+                    // An estimate of 0 against a nonzero error: the ratio is capped (finite).
+                    worst_ratio = worst_ratio.max(if actual == 0.0 { 0.0 } else { (actual / est[r]).min(1e12) });
+                }
             }
+            covers.push(covered as f64 / points.len().max(1) as f64);
+            over.push(worst_ratio);
             error.push(worst.max(ERROR_FLOOR));
             time.push(walls.iter().sum::<f64>());
             ok.push(all_ok);
@@ -146,6 +166,11 @@ impl Kind for Pareto {
             .with_f64("meets_tolerance", order.iter().map(|&i| (error[i] <= p.tolerance) as u8 as f64).collect())
             .with_f64("tolerance", vec![p.tolerance; n])
             .with("value", ColumnData::Str(vec![p.value.clone(); n]));
+        let t = if p.error.is_some() {
+            t.with_f64("estimate_covers", pick(&covers)).with_f64("error_over_estimate", pick(&over))
+        } else {
+            t
+        };
         Ok(t.into())
     }
 }
@@ -243,6 +268,7 @@ mod tests {
             value: "v".into(),
             tolerance: 0.005,
             default: "fine".into(),
+            error: None,
         };
         let out = Pareto::run(&p, &Inputs { tables }).unwrap().table;
         let err = out.f64_column("rel_error").unwrap();
@@ -251,5 +277,32 @@ mod tests {
         assert_eq!(out.f64_column("on_front").unwrap(), vec![1.0, 1.0, 0.0]);
         assert_eq!(out.f64_column("meets_tolerance").unwrap(), vec![0.0, 1.0, 0.0]);
         assert_eq!(out.f64_column("is_default").unwrap(), vec![0.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn error_estimates_are_checked_against_the_reference() {
+        // Actual errors 0.1 and 0.02; estimates 0.2 (covers) and 0.01 (half the error).
+        let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
+        let cand = stage(&[1.0, 2.0], &[10.1, 19.98], &[1.0, 1.0]).with_f64("err", vec![0.2, 0.01]);
+        let tables: BTreeMap<String, &Table> =
+            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
+        let mut p = ParetoParams {
+            candidates: vec!["c".into()],
+            reference: "ref".into(),
+            match_on: vec!["x".into()],
+            value: "v".into(),
+            tolerance: 0.005,
+            default: "c".into(),
+            error: Some("err".into()),
+        };
+        let out = Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table;
+        assert_eq!(out.f64_column("estimate_covers").unwrap(), vec![0.5]);
+        assert!((out.f64_column("error_over_estimate").unwrap()[0] - 2.0).abs() < 1e-9);
+        // Without an error column the columns are absent; a missing one names the candidate.
+        p.error = None;
+        assert!(Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table.column("estimate_covers").is_none());
+        p.error = Some("nope".into());
+        let e = Pareto::run(&p, &Inputs { tables }).unwrap_err();
+        assert!(format!("{e:#}").contains("candidate `c`"), "{e:#}");
     }
 }
