@@ -314,7 +314,9 @@ fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Seri
         .collect())
 }
 
-const PALETTE: [RGBColor; 11] = [
+/// Thirteen colours: black, the ten of matplotlib's tab10, navy and maroon (so that a
+/// figure of up to twelve families repeats none: the bench's FEM figure has twelve).
+const PALETTE: [RGBColor; 13] = [
     RGBColor(0, 0, 0),
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -326,6 +328,8 @@ const PALETTE: [RGBColor; 11] = [
     RGBColor(188, 189, 34),
     RGBColor(227, 119, 194),
     RGBColor(127, 127, 127),
+    RGBColor(0, 0, 128),
+    RGBColor(128, 0, 0),
 ];
 
 /// "10⁻³" for an integer exponent.
@@ -533,7 +537,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 8;
+    const VERSION: u32 = 9;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
