@@ -94,10 +94,13 @@ fn the_buckling_map_stages_reach_their_tables() {
   - name: gc
     kind: fem.gamma_c
     params: {{h_over_R: 0.06, mu: 0, guess: 0.008, rel_tol: 0.3, model: {MAP_MODEL}}}
+  - name: lim
+    kind: fem.buckling_limit
+    params: {{mu: 0, h_lo: 0.06, h_hi: 0.2, tol: 0.02, model: {MAP_MODEL}}}
   - name: map
     kind: fem.gamma_c_map
-    needs: [gc]
-    params: {{gamma_c: gc}}
+    needs: [gc, lim]
+    params: {{gamma_c: gc, limit: lim}}
 "
     ));
     let b = s.table("b");
@@ -116,8 +119,23 @@ fn the_buckling_map_stages_reach_their_tables() {
     assert!((column(&g, "error_estimate")[0] - 0.5 * (hi - lo)).abs() < 1e-12 * hi);
     let r = column(&g, "r_over_R")[0];
     assert!(r > 0.3 && r < 0.9 && (column(&g, "eq3_7_over_Eh")[0] - r.powi(4)).abs() < 1e-12);
+    // The thickness above which nothing snaps, bisected to 0.02 in h/R from [0.06, 0.2]:
+    // its error estimate is the half-bracket.
+    let l = s.table("lim");
+    let (hl, lo, hi, err) = (
+        column(&l, "h_limit_over_R")[0],
+        column(&l, "h_lo_over_R")[0],
+        column(&l, "h_hi_over_R")[0],
+        column(&l, "error_estimate")[0],
+    );
+    assert_eq!(column(&l, "found")[0], 1.0);
+    assert!(lo < hl && hl < hi && hi - lo <= 0.02 && (err - 0.5 * (hi - lo)).abs() < 1e-15, "{lo} {hl} {hi} {err}");
+    // The map: the gamma_c point (h/R exact) and the limit row closing the curve at gamma 0,
+    // with the limit's half-bracket as the error of h/R.
     let m = s.table("map");
-    assert_eq!(column(&m, "gamma_c_over_Eh"), vec![mid]);
+    assert_eq!(column(&m, "gamma_c_over_Eh"), vec![mid, 0.0]);
+    assert_eq!(column(&m, "h_over_R"), vec![0.06, hl]);
+    assert_eq!(column(&m, "h_error_over_R"), vec![0.0, err]);
 }
 
 #[test]

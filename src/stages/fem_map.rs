@@ -494,7 +494,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 11;
+    const VERSION: u32 = 12;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
@@ -543,6 +543,9 @@ impl Kind for FemBucklingLimit {
             .with_f64("h_limit_over_R", vec![if found { 0.5 * (lo + hi) } else { 0.0 }])
             .with_f64("h_lo_over_R", vec![lo])
             .with_f64("h_hi_over_R", vec![hi])
+            // The half-bracket; without a limit in [h_lo, h_hi] (found = false, the limit 0 a
+            // placeholder) no confidence: h_hi.
+            .with_f64("error_estimate", vec![if found { 0.5 * (hi - lo) } else { p.h_hi }])
             .with("found", ColumnData::Bool(vec![found]))
             .with("buckles_at_h_lo", ColumnData::Bool(vec![at_lo]))
             .with("buckles_at_h_hi", ColumnData::Bool(vec![at_hi]))
@@ -569,7 +572,7 @@ pub struct FemGammaCMap;
 
 impl Kind for FemGammaCMap {
     const NAME: &'static str = "fem.gamma_c_map";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const DOC: &'static str =
         "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
     type Params = MapParams;
@@ -596,14 +599,17 @@ impl Kind for FemGammaCMap {
             col("found")?,
             col("error_estimate")?,
         );
-        let mut rows: Vec<[f64; 9]> =
-            (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i], found[i], err[i]]).collect();
+        // The last entry is the error of h/R: none on the gamma_c points (h/R is given), the
+        // bisection's half-bracket on a limit row.
+        let mut rows: Vec<[f64; 10]> =
+            (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i], found[i], err[i], 0.0]).collect();
         if let Some(l) = &p.limit {
             let lt = inputs.table(l)?;
             let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
+            let (llo, lhi) = (lt.f64_column("h_lo_over_R")?, lt.f64_column("h_hi_over_R")?);
             for i in 0..lmu.len() {
                 if found[i] > 0.5 {
-                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0]);
+                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.5 * (lhi[i] - llo[i])]);
                 }
             }
         }
@@ -619,6 +625,7 @@ impl Kind for FemGammaCMap {
             .with_f64("gamma_lo_over_Eh", c(3))
             .with_f64("gamma_hi_over_Eh", c(4))
             .with_f64("error_estimate", c(8))
+            .with_f64("h_error_over_R", c(9))
             .with_f64("eq3_7_over_Eh", c(5))
             .with("found", ColumnData::Bool(rows.iter().map(|r| r[7] > 0.5).collect()))
             .with("reliable", ColumnData::Bool(rows.iter().map(|r| r[6] > 0.5).collect()))
