@@ -248,7 +248,6 @@ impl Kind for FemIndent {
         }
         let f_bar = sh.R / (sh.E * sh.h.powi(3));
         let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
-        let mesh_error = if default_mesh { default_mesh_rel_error(p.mu) } else { 0.0 };
         // W and its error for a complete cycle only (a partial one has no closed integral).
         let w_scale = sh.E * sh.h.powi(3);
         let (w_bar, w_error_bar) = if c.complete {
@@ -272,7 +271,7 @@ impl Kind for FemIndent {
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             // The resolution error of the default mesh (0 for others: not measured).
-            .with_f64("F_error_bar", col(&|s| mesh_error * (s.contact.force * f_bar).abs()))
+            .with_f64("F_error_bar", col(&|s| declared_mesh_error(s.contact.force * f_bar, default_mesh, p.mu)))
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
             .with_f64(
                 "slip_fraction",
@@ -325,8 +324,17 @@ impl Kind for FemIndent {
 /// resolution error at friction `mu` (`fem::mesh::default_mesh_rel_error`; other meshes:
 /// the bracket only).
 pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool, mu: f64) -> f64 {
-    let mesh = if default_mesh { default_mesh_rel_error(mu) } else { 0.0 };
-    snap_bracket(j) + mesh * j.force_before.abs()
+    snap_bracket(j) + declared_mesh_error(j.force_before, default_mesh, mu)
+}
+
+/// The declared resolution error of a force on the default mesh at friction `mu`
+/// (`fem::mesh::default_mesh_rel_error`); 0 on other meshes (not measured).
+pub(crate) fn declared_mesh_error(force: f64, default_mesh: bool, mu: f64) -> f64 {
+    if default_mesh {
+        default_mesh_rel_error(mu) * force.abs()
+    } else {
+        0.0
+    }
 }
 
 /// The bisection's bracket of a snap-through force: from the last stable state to the

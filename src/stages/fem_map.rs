@@ -7,12 +7,12 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
-use super::fem::snap_bracket;
+use super::fem::{declared_mesh_error, snap_bracket};
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::critical::{bracket, probe, retrying};
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Jump, Snap};
-use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
+use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -248,16 +248,37 @@ struct MeshStudy {
     agrees: bool,
 }
 
+/// What a mesh study compares of one cycle.
+#[derive(Clone, Copy, Debug)]
+struct Outcome {
+    buckled: bool,
+    /// F_buckling (0 without a snap) and W.
+    force: f64,
+    w: f64,
+    complete: bool,
+}
+
+impl Outcome {
+    fn of(buckling: &Option<Jump>, w: f64, c: &Cycle) -> Outcome {
+        Outcome {
+            buckled: buckling.is_some(),
+            force: buckling.map_or(0.0, |j| j.force_before),
+            w,
+            complete: c.complete,
+        }
+    }
+}
+
 impl MeshStudy {
-    /// From (buckled, F, W, complete) on the mesh and on its companion with twice the
-    /// meridian elements.
-    fn of(mesh: (bool, f64, f64, bool), finer: (bool, f64, f64, bool)) -> MeshStudy {
-        let agrees = mesh.0 == finer.0 && mesh.3 && finer.3;
+    /// From the cycle on the mesh and on its companion with twice the meridian elements.
+    fn of(mesh: Outcome, finer: Outcome) -> MeshStudy {
+        let agrees = mesh.buckled == finer.buckled && mesh.complete && finer.complete;
         if agrees {
-            MeshStudy { f_error: 2.0 * (mesh.1 - finer.1).abs(), w_error: 2.0 * (mesh.2 - finer.2).abs(), agrees }
+            let twice = |a: f64, b: f64| 2.0 * (a - b).abs();
+            MeshStudy { f_error: twice(mesh.force, finer.force), w_error: twice(mesh.w, finer.w), agrees }
         } else {
             let largest = |a: f64, b: f64| a.abs().max(b.abs());
-            MeshStudy { f_error: largest(mesh.1, finer.1), w_error: largest(mesh.2, finer.2), agrees }
+            MeshStudy { f_error: largest(mesh.force, finer.force), w_error: largest(mesh.w, finer.w), agrees }
         }
     }
 }
@@ -306,9 +327,8 @@ impl Kind for FemBuckling {
         } else {
             (cycle_on(n), None)
         };
-        let summary =
-            |b: &Option<Jump>, w: f64, c: &Cycle| (b.is_some(), b.map_or(0.0, |j| j.force_before), w, c.complete);
-        let study = finer.as_ref().map(|(fb, fw, _, fc)| MeshStudy::of(summary(&b, w, &c), summary(fb, *fw, fc)));
+        let study =
+            finer.as_ref().map(|(fb, fw, _, fc)| MeshStudy::of(Outcome::of(&b, w, &c), Outcome::of(fb, *fw, fc)));
         let fb = m.f_bar(p.h_over_R);
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
@@ -318,7 +338,7 @@ impl Kind for FemBuckling {
         let (f_mesh, w_mesh, source) = match study {
             Some(st) => (st.f_error, st.w_error, "study"),
             None if m.default_mesh() => {
-                (b.map_or(0.0, |j| default_mesh_rel_error(p.mu) * j.force_before.abs()), 0.0, "declared")
+                (b.map_or(0.0, |j| declared_mesh_error(j.force_before, true, p.mu)), 0.0, "declared")
             }
             None => (0.0, 0.0, "none"),
         };
@@ -639,24 +659,32 @@ pub fn register(r: &mut Registry) {
 
 #[cfg(test)]
 mod tests {
-    use super::MeshStudy;
+    use super::{MeshStudy, Outcome};
+
+    fn outcome((buckled, force, w, complete): (bool, f64, f64, bool)) -> Outcome {
+        Outcome { buckled, force, w, complete }
+    }
+
+    fn study(mesh: (bool, f64, f64, bool), finer: (bool, f64, f64, bool)) -> MeshStudy {
+        MeshStudy::of(outcome(mesh), outcome(finer))
+    }
 
     #[test]
     fn the_mesh_study_bounds_the_error_by_twice_the_difference_and_knows_when_it_knows_nothing() {
         // Agreeing meshes: twice the differences (the first-order Richardson bound).
-        let st = MeshStudy::of((true, 9.314, 0.0206, true), (true, 9.352, 0.0194, true));
+        let st = study((true, 9.314, 0.0206, true), (true, 9.352, 0.0194, true));
         assert!((st.f_error - 0.076).abs() < 1e-12 && (st.w_error - 0.0024).abs() < 1e-12 && st.agrees, "{st:?}");
         // One mesh snaps and the other does not, or a cycle is incomplete: the larger |F|
         // and |W| of the two.
         for (mesh, finer) in
             [((true, -9.3, 0.02, true), (false, 0.0, 0.01, true)), ((false, 0.0, 0.01, true), (true, 9.3, 0.02, true))]
         {
-            assert_eq!(MeshStudy::of(mesh, finer), MeshStudy { f_error: 9.3, w_error: 0.02, agrees: false });
+            assert_eq!(study(mesh, finer), MeshStudy { f_error: 9.3, w_error: 0.02, agrees: false });
         }
-        let st = MeshStudy::of((true, 9.2, 0.02, true), (true, 9.3, 0.01, false));
+        let st = study((true, 9.2, 0.02, true), (true, 9.3, 0.01, false));
         assert_eq!(st, MeshStudy { f_error: 9.3, w_error: 0.02, agrees: false });
         // Neither snaps: F is 0 on both, W's difference stands.
-        let st = MeshStudy::of((false, 0.0, 1.5, true), (false, 0.0, 1.4, true));
+        let st = study((false, 0.0, 1.5, true), (false, 0.0, 1.4, true));
         assert!(st.f_error == 0.0 && (st.w_error - 0.2).abs() < 1e-12 && st.agrees);
     }
 }
