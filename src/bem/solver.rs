@@ -139,7 +139,14 @@ fn load_scale(p: &Params) -> f64 {
 /// mu* was 0.95-1.01 times |mu*| times this fraction plus the mesh's Richardson share, on
 /// domains of 8, 10 and 16.
 pub fn domain_rel_error(p: &Params, half_length: f64) -> f64 {
-    tail_over(p, half_length.powi(5)) / load_scale(p)
+    domain_load_error(p, half_length) / load_scale(p)
+}
+
+/// The load the Lennard-Jones tail would carry beyond |X| = `half_length` (`tail_over`):
+/// the error a domain of that half-length may cause in a load, such as the pull-off load
+/// (independent of W).
+pub fn domain_load_error(p: &Params, half_length: f64) -> f64 {
+    tail_over(p, half_length.powi(5))
 }
 
 /// The contact half-width the mesh is built for: JKR (relaxed), at least Hertz.

@@ -3,7 +3,7 @@
 
 use super::{check, finite};
 use crate::bem::branch::{pull_off, PullOff};
-use crate::bem::solver::{self, Mesh, Params};
+use crate::bem::solver::{self, ErrorShares, Mesh, Params};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use anyhow::Result;
@@ -35,13 +35,13 @@ const W_START: f64 = 0.1;
 /// Bracket of the golden-section search in the approach, relative to the first step.
 const APPROACH_TOL: f64 = 1e-3;
 
-/// The pull-off load at one (lambda, k, V), with its Richardson estimate (the same search
-/// on half the elements).
+/// The pull-off load at one (lambda, k, V), with its error estimate: the Richardson
+/// estimate of the same search on half the elements, and the domain's truncation.
 pub struct BemPullOff;
 
 impl Kind for BemPullOff {
     const NAME: &'static str = "bem.pulloff";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 8;
     const DOC: &'static str =
         "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked by pseudo-arclength in approach and load) at speed V";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];
@@ -67,6 +67,7 @@ impl Kind for BemPullOff {
             let s = solver::solve(&start, Mesh { n, ..first });
             (s.converged.then(|| pull_off(&s, APPROACH_TOL)), s.iterations)
         };
+        // The mesh's share: Richardson at second order (the refinement stops on it).
         let estimate_of = |f: &Option<PullOff>, c: &Option<PullOff>| match (f, c) {
             (Some(f), Some(c)) if f.converged && c.converged => (f.load - c.load).abs() / 3.0,
             _ => f64::MAX,
@@ -88,6 +89,11 @@ impl Kind for BemPullOff {
         }
         let converged = po.as_ref().is_some_and(|r| r.converged);
         let fine_mesh = Mesh { n, ..first };
+        // The reported error, as `bem.sweep`'s (`solver::ErrorShares::reported`): the mesh's
+        // share with Roache's safety factor, plus twice the load the Lennard-Jones tail
+        // carries beyond the domain.
+        let reported =
+            ErrorShares { mesh: estimate, domain: solver::domain_load_error(&start, first.half_length) }.reported();
         let (load, width, edges, mu, evaluations, iterations) = match &po {
             Some(r) => (
                 r.load,
@@ -115,7 +121,7 @@ impl Kind for BemPullOff {
             .with("converged", ColumnData::Bool(vec![converged && load.is_finite()]))
             .with("evaluations", ColumnData::I64(vec![evaluations as i64]))
             .with("iterations", ColumnData::I64(vec![iterations as i64]))
-            .with_f64("error_estimate", vec![estimate])
+            .with_f64("error_estimate", vec![reported])
             .with("n", ColumnData::I64(vec![fine_mesh.n as i64]))
             .with_f64("half_length", vec![fine_mesh.half_length])
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
