@@ -164,12 +164,14 @@ impl Kind for BemSweep {
 
 /// The fields of one point: P(X), U(X), H(X), the friction integrand P dU/dX and its
 /// multiple whose integral is mu* (Eq. 4.16), the deformed surface Z = -U and the
-/// indenter Z = X^2/2 - Delta (Z towards the indenter; the gap is their difference).
+/// indenter Z = X^2/2 - Delta (Z towards the indenter; the gap is their difference); on
+/// every row the point's mu*, its error estimate (as `bem.sweep`'s), the elements and the
+/// wall time.
 pub struct BemProfile;
 
 impl Kind for BemProfile {
     const NAME: &'static str = "bem.profile";
-    const VERSION: u32 = 7;
+    const VERSION: u32 = 8;
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
@@ -180,7 +182,8 @@ impl Kind for BemProfile {
     }
 
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
-        let (s, _) = p.solve_at(&p.physics());
+        let t0 = std::time::Instant::now();
+        let (s, estimate) = p.solve_at(&p.physics());
         if !s.converged {
             anyhow::bail!("the point did not converge (residual {:e} after {} iterations)", s.residual, s.iterations);
         }
@@ -198,7 +201,12 @@ impl Kind for BemProfile {
             .with_f64("P_dU_dX", integrand.clone())
             .with_f64("mu_integrand", integrand.iter().map(|v| pre * v).collect())
             .with_f64("surface", s.u.iter().map(|u| -u).collect())
-            .with_f64("indenter", s.x.iter().map(|x| 0.5 * x * x - s.delta).collect());
+            .with_f64("indenter", s.x.iter().map(|x| 0.5 * x * x - s.delta).collect())
+            // The point's friction and its error estimate, as `bem.sweep` reports them.
+            .with_f64("mu_star", vec![finite(s.friction().mu_star); n])
+            .with_f64("error_estimate", vec![estimate.min(f64::MAX); n])
+            .with("n", ColumnData::I64(vec![s.mesh.n as i64; n]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }
 }

@@ -363,12 +363,13 @@ pub struct ProfileParams {
     pub points: Vec<ProfilePoint>,
 }
 
-/// Deformed meridian and contact pressure of chosen states of the loading leg.
+/// Deformed meridian and contact pressure of chosen states of the loading leg; on every row
+/// the state's plate force with its declared resolution error, and the wall time.
 pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 14;
+    const VERSION: u32 = 15;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     type Params = ProfileParams;
@@ -392,6 +393,7 @@ impl Kind for FemProfile {
     }
 
     fn run(p: &ProfileParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
         let (model, plate) = p.cycle.model();
         let top = p.points.iter().map(|q| q.delta).fold(0.0, f64::max);
         let c = p.cycle.cycle(&model, &plate, top.min(p.cycle.delta_max), false);
@@ -399,6 +401,8 @@ impl Kind for FemProfile {
         let m = &model.mesh;
         let mut t = ProfileRows::default();
         let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
+        let f_bar = sh.R / (sh.E * sh.h.powi(3));
+        let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
         for (k, q) in p.points.iter().enumerate() {
             let Some(state) =
                 c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
@@ -420,9 +424,12 @@ impl Kind for FemProfile {
                     t.pressure.push(finite(p_a / sh.E));
                     t.contact.push(surface == 0 && s.contact.active[i]);
                     t.inverted.push(state.inverted);
+                    t.force.push(finite(s.contact.force * f_bar));
+                    t.force_error.push(finite(declared_mesh_error(s.contact.force * f_bar, default_mesh, p.cycle.mu)));
                 }
             }
         }
+        let rows = t.label.len();
         Ok(Table::new()
             .with("label", ColumnData::Str(t.label))
             .with("point", ColumnData::I64(t.point))
@@ -433,6 +440,10 @@ impl Kind for FemProfile {
             .with_f64("p_over_E", t.pressure)
             .with_f64("contact", t.contact.iter().map(|&c| if c { 1.0 } else { 0.0 }).collect())
             .with("inverted", ColumnData::Bool(t.inverted))
+            // The state's plate force and its declared resolution error (`fem.indent`'s).
+            .with_f64("F_bar", t.force)
+            .with_f64("F_error_bar", t.force_error)
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); rows])
             .into())
     }
 }
@@ -453,6 +464,8 @@ struct ProfileRows {
     pressure: Vec<f64>,
     contact: Vec<bool>,
     inverted: Vec<bool>,
+    force: Vec<f64>,
+    force_error: Vec<f64>,
 }
 
 /// The inner-surface node on the same radial line as the outer node `a` (same meridian
