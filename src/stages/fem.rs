@@ -72,6 +72,17 @@ impl ShellParams {
         check::positive(e, "grading", self.grading);
     }
 
+    /// F R / (E h^3) per unit force.
+    fn f_bar(&self) -> f64 {
+        self.R / (self.E * self.h.powi(3))
+    }
+
+    /// The mesh is the default one, whose resolution error is declared
+    /// (`fem::mesh::default_mesh_rel_error`).
+    fn default_mesh(&self) -> bool {
+        self.n_meridian.is_none() && self.n_thickness == 2
+    }
+
     /// The mesh, its meridian resolved for the Lennard-Jones range `g0` unless given.
     fn mesh(&self, g0: f64) -> ShellMesh {
         let n = self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0));
@@ -246,8 +257,7 @@ impl Kind for FemIndent {
         for s in &c.unstable {
             rows.push(("unstable", "unstable", s));
         }
-        let f_bar = sh.R / (sh.E * sh.h.powi(3));
-        let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
+        let (f_bar, default_mesh) = (sh.f_bar(), sh.default_mesh());
         // W and its error for a complete cycle only (a partial one has no closed integral).
         let w_scale = sh.E * sh.h.powi(3);
         let (w_bar, w_error_bar) = if c.complete {
@@ -401,8 +411,7 @@ impl Kind for FemProfile {
         let m = &model.mesh;
         let mut t = ProfileRows::default();
         let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
-        let f_bar = sh.R / (sh.E * sh.h.powi(3));
-        let default_mesh = sh.n_meridian.is_none() && sh.n_thickness == 2;
+        let (f_bar, default_mesh) = (sh.f_bar(), sh.default_mesh());
         for (k, q) in p.points.iter().enumerate() {
             let Some(state) =
                 c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
