@@ -117,32 +117,66 @@ fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
 /// (i, J) of each component, in 3D indices r = 0, z = 1, theta = 2.
 const INDEX: [(usize, usize); 5] = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)];
 
-/// Neo-Hookean P (components) and A = dP/dF (5 x 5), or None if J <= 0.
-fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5])> {
+/// J, ln J and F^-1 (3 x 3, block diagonal) of F, or None if J <= 0.
+fn kinematics(f: &[f64; 5]) -> Option<(f64, [[f64; 3]; 3])> {
     let det2 = f[0] * f[3] - f[1] * f[2];
     let j = det2 * f[4];
     if !(j > 0.0) {
         return None;
     }
-    let lnj = j.ln();
-    // F^-1 (3 x 3, block diagonal).
     let mut inv = [[0.0; 3]; 3];
     inv[0][0] = f[3] / det2;
     inv[0][1] = -f[1] / det2;
     inv[1][0] = -f[2] / det2;
     inv[1][1] = f[0] / det2;
     inv[2][2] = 1.0 / f[4];
-    let mut p = [0.0; 5];
+    Some((j.ln(), inv))
+}
+
+/// Neo-Hookean P (components) from F, ln J and F^-1.
+fn piola(f: &[f64; 5], lnj: f64, inv: &[[f64; 3]; 3], mu: f64, lambda: f64) -> [f64; 5] {
+    // F^-T_iJ = F^-1_Ji.
+    std::array::from_fn(|c| {
+        let (i, jj) = INDEX[c];
+        mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i]
+    })
+}
+
+/// Neo-Hookean P (components) and A = dP/dF (5 x 5), or None if J <= 0.
+fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5])> {
+    let (lnj, inv) = kinematics(f)?;
+    let p = piola(f, lnj, &inv, mu, lambda);
     let mut a = [[0.0; 5]; 5];
     for (c, &(i, jj)) in INDEX.iter().enumerate() {
-        // F^-T_iJ = F^-1_Ji.
-        p[c] = mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i];
         for (d, &(k, l)) in INDEX.iter().enumerate() {
             let delta = if i == k && jj == l { 1.0 } else { 0.0 };
             a[c][d] = mu * delta + lambda * inv[jj][i] * inv[l][k] + (mu - lambda * lnj) * inv[l][i] * inv[jj][k];
         }
     }
     Some((p, a))
+}
+
+/// Node b's internal force (r, z) at a Gauss point with stress p (one term of Int G^T P dV0).
+fn nodal_force(pt: &Point, b: usize, p: &[f64; 5]) -> [f64; 2] {
+    let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], pt.n[b] / pt.radius);
+    [(dr * p[0] + dz * p[1] + t * p[4]) * pt.dv, (dr * p[2] + dz * p[3]) * pt.dv]
+}
+
+/// The internal forces of `forces_and_tangent_of` alone (bitwise the same), without the
+/// tangent: what a line search needs of a trial step.
+pub fn forces_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> {
+    let mut fint = [0.0; 16];
+    for pt in &geometry.0 {
+        let f = deformation(pt, u);
+        let (lnj, inv) = kinematics(&f)?;
+        let p = piola(&f, lnj, &inv, mu, lambda);
+        for b in 0..8 {
+            let [fr, fz] = nodal_force(pt, b, &p);
+            fint[2 * b] += fr;
+            fint[2 * b + 1] += fz;
+        }
+    }
+    Some(fint)
 }
 
 /// The element's strain energy or None if inverted somewhere.
@@ -207,8 +241,9 @@ pub fn forces_and_tangent_of(
         }
         for b in 0..8 {
             let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], hoop[b]);
-            fint[2 * b] += (dr * p[0] + dz * p[1] + t * p[4]) * pt.dv;
-            fint[2 * b + 1] += (dr * p[2] + dz * p[3]) * pt.dv;
+            let [fr, fz] = nodal_force(pt, b, &p);
+            fint[2 * b] += fr;
+            fint[2 * b + 1] += fz;
             for r in 2 * b..16 {
                 let col = &ag[r];
                 k[2 * b][r] += dr * col[0] + dz * col[1] + t * col[4];

@@ -9,7 +9,7 @@
 
 use super::adhesion::Tangent;
 use super::contact::{ContactState, Plate};
-use super::system::{Model, Stiffness};
+use super::system::{Model, NoTangent, Stiffness};
 
 /// One converged (or the last failed) state of the path.
 #[derive(Clone, Debug)]
@@ -103,31 +103,40 @@ fn evaluate_with(
     Some(Evaluation { residual: r, tangent: trip, contact: state, norm, q })
 }
 
+/// The residual's max-norm at displacements `u` (`evaluate`'s, bitwise) without the tangent:
+/// a line search's trial point. None if an element is inverted or the residual not finite.
+fn trial_norm(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]) -> Option<f64> {
+    let fint = model.internal_forces(u)?;
+    let mut fext = vec![0.0; model.n_dofs()];
+    let mut q = vec![0.0; model.n_dofs()];
+    plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut NoTangent, &mut q, Tangent::Exact);
+    let norm = (0..model.n_dofs()).filter(|&i| !model.fixed[i]).fold(0.0f64, |m, i| m.max((fint[i] - fext[i]).abs()));
+    norm.is_finite().then_some(norm)
+}
+
 /// Newton at plate displacement `delta` from displacements `u0`, with the friction anchors
 /// `stick` of the last converged state (`ContactState::stick`; empty: the reference state).
 pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], stick: &[f64], opt: Options) -> Step {
     let scale = e * model.mesh.thickness.powi(2);
     let mut u = u0.to_vec();
-    let residual_of = |u: &[f64]| evaluate(model, plate, delta, u, stick);
-    let Some(mut cur) = residual_of(&u) else {
+    let Some(mut cur) = evaluate(model, plate, delta, &u, stick) else {
         return Step::failed(delta, u);
     };
-    // Backtracking on the residual norm (and on inverted elements) along `du`. If no step
-    // down to 1/128 lowers it, the longest admissible step is taken: at the kinks of the
-    // interface laws (contact status, stick/slip) a tiny step only sends Newton back where it
-    // came from, a 2-cycle; the long step lets it change the status set.
-    let line_search = |u: &[f64], cur: &Evaluation, du: &[f64]| -> Option<(Vec<f64>, Evaluation)> {
+    // Backtracking on the residual norm (and on inverted elements) along `du`, the trial
+    // points without their tangent (`trial_at`: most of a frictional solve's trials are
+    // rejected). If no step down to 1/128 lowers it, the longest admissible step is taken: at
+    // the kinks of the interface laws (contact status, stick/slip) a tiny step only sends
+    // Newton back where it came from, a 2-cycle; the long step lets it change the status set.
+    let line_search = |u: &[f64], norm: f64, du: &[f64]| -> Option<Vec<f64>> {
         let mut step = 1.0;
-        let mut longest: Option<(Vec<f64>, Evaluation)> = None;
+        let mut longest: Option<Vec<f64>> = None;
         for _ in 0..8 {
             let trial: Vec<f64> = u.iter().zip(du).map(|(a, b)| a + step * b).collect();
-            if let Some(next) = residual_of(&trial) {
-                if next.norm < cur.norm {
-                    return Some((trial, next));
+            if let Some(next) = trial_norm(model, plate, delta, &trial, stick) {
+                if next < norm {
+                    return Some(trial);
                 }
-                if longest.is_none() {
-                    longest = Some((trial, next));
-                }
+                longest.get_or_insert(trial);
             }
             step *= 0.5;
         }
@@ -137,16 +146,19 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
         iterations += 1;
         let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
-        let mut next = model.solve(&cur.tangent, &rhs).ok().and_then(|du| line_search(&u, &cur, &du));
+        let mut next = model.solve(&cur.tangent, &rhs).ok().and_then(|du| line_search(&u, cur.norm, &du));
         if next.is_none() && plate.adhesion.is_some() {
             // Every step along the exact direction inverts elements: strong adhesion makes
             // the tangent indefinite where the law softens. Take the direction of the
             // convexified tangent instead (`adhesion::Tangent::Convex`).
             next = evaluate_with(model, plate, delta, &u, stick, Tangent::Convex)
                 .and_then(|convex| model.solve(&convex.tangent, &rhs).ok())
-                .and_then(|du| line_search(&u, &cur, &du));
+                .and_then(|du| line_search(&u, cur.norm, &du));
         }
-        let Some((trial, ev)) = next else { break };
+        // The accepted point's tangent (its residual is the trial's, bitwise).
+        let Some((trial, ev)) = next.and_then(|t| evaluate(model, plate, delta, &t, stick).map(|ev| (t, ev))) else {
+            break;
+        };
         u = trial;
         cur = ev;
     }

@@ -12,7 +12,7 @@
 // Index loops over local dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{energy_of, forces_and_tangent_of, lame, Geometry};
+use super::element::{energy_of, forces_and_tangent_of, forces_of, lame, Geometry};
 use super::mesh::ShellMesh;
 use crate::numerics::banded::{Band, BandCholesky, BandLu};
 use anyhow::{anyhow, Result};
@@ -25,6 +25,13 @@ use std::sync::Arc;
 /// them into the model's sparse matrix.
 pub trait TangentSink {
     fn push(&mut self, entry: (usize, usize, f64));
+}
+
+/// Drops every entry: the interface laws' forces without their tangent.
+pub struct NoTangent;
+
+impl TangentSink for NoTangent {
+    fn push(&mut self, _: (usize, usize, f64)) {}
 }
 
 impl TangentSink for Vec<(usize, usize, f64)> {
@@ -301,6 +308,26 @@ impl Model {
         Some((f, k))
     }
 
+    /// The internal forces alone (bitwise those of `assemble`), or None if an element is
+    /// inverted: a line search's trial steps, most of them rejected, need no tangent.
+    pub fn internal_forces(&self, u: &[f64]) -> Option<Vec<f64>> {
+        let mut local = vec![[0.0; 16]; self.mesh.elements.len()];
+        let ok = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
+            let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
+            forces_of(geometry, &ue, self.mu, self.lambda).map(|fe| *out = fe).is_some()
+        });
+        if !ok {
+            return None;
+        }
+        let mut f = vec![0.0; self.n_dofs()];
+        for (el, fe) in self.mesh.elements.iter().zip(&local) {
+            for q in 0..16 {
+                f[2 * el[q / 2] + q % 2] += fe[q];
+            }
+        }
+        Some(f)
+    }
+
     /// The stored strain energy (None if an element is inverted).
     pub fn strain_energy(&self, u: &[f64]) -> Option<f64> {
         self.mesh
@@ -490,5 +517,25 @@ mod tests {
         let path = crate::fem::indent::load_path(&model, &plate, e, 0.12 * r, 12, 4);
         assert!(path.iter().all(|s| s.converged) && path.last().unwrap().contact.force > 0.0);
         assert!(model.factorizations() > 0);
+    }
+
+    #[test]
+    fn the_forces_alone_are_the_assemblys_bitwise_and_none_when_inverted() {
+        // A line search compares the residual norms of trial points built from
+        // `internal_forces` with those of `assemble`: they must be the same numbers, or the
+        // accepted point's norm would differ from the one that was accepted.
+        let model = Model::new(ShellMesh::hemisphere(15.0, 1.0, 30, 2, 3.0), 1.3, 0.45, Base::Clamped);
+        let mut u: Vec<f64> = (0..model.n_dofs()).map(|i| 0.01 * ((i as f64) * 0.37).sin()).collect();
+        model.fixed.iter().zip(u.iter_mut()).for_each(|(&f, v)| *v = if f { 0.0 } else { *v });
+        let (f, _) = model.assemble(&u).unwrap();
+        let alone = model.internal_forces(&u).unwrap();
+        assert!(f.iter().any(|v| v.abs() > 1e-6));
+        assert!(f.iter().zip(&alone).all(|(a, b)| a.to_bits() == b.to_bits()));
+        // Crush the apex row through the thickness: inverted elements, no forces.
+        let apex: Vec<usize> = model.mesh.outer.iter().take(3).copied().collect();
+        for &a in &apex {
+            u[2 * a + 1] -= 5.0;
+        }
+        assert!(model.assemble(&u).is_none() && model.internal_forces(&u).is_none());
     }
 }
