@@ -13,7 +13,7 @@ fn the_cycle_and_the_three_regimes_reach_the_tables() {
         "stages:
   - name: cycle
     kind: fem.indent
-    params: {{shell: {SHELL}, delta_max: 0.3, steps: 30}}
+    params: {{shell: {SHELL}, delta_max: 0.3, steps: 30, mesh_study: true}}
   - name: states
     kind: fem.profile
     params:
@@ -37,6 +37,32 @@ fn the_cycle_and_the_three_regimes_reach_the_tables() {
     }
     let w = column(&t, "W_bar")[0];
     assert!(w > 0.015 && w < 0.03, "{w}");
+    // The mesh study (the cycle on 120 elements alongside) against the same cycle on 240
+    // (measured, session 18: F_buckling 9.338, W_bar 0.02477; F at delta/R = 0.05 and 0.19 on
+    // the loading leg 1.659493 and 9.000983). Here F_buckling is 9.289 +- 0.147 and W_bar
+    // 0.0230 +- 0.0103: the estimates cover the errors, without being vacuous.
+    assert_eq!(strings(&t, "mesh_error_source")[0], "study");
+    assert_eq!(column(&t, "mesh_study_agrees")[0], 1.0);
+    assert_eq!(column(&t, "n_meridian")[0], 60.0);
+    let (fb, fe, fm) = (
+        column(&t, "F_buckling_bar")[0],
+        column(&t, "F_buckling_error_bar")[0],
+        column(&t, "F_buckling_mesh_error_bar")[0],
+    );
+    assert!(fm > 0.0 && fe > fm && (fb - 9.338).abs() <= fe && fe < 0.05 * fb, "F_buckling {fb} +- {fe}");
+    let (we, wm) = (column(&t, "W_error_bar")[0], column(&t, "W_mesh_error_bar")[0]);
+    assert!(wm > 0.0 && we > wm && (w - 0.02477).abs() <= we && we < w, "W {w} +- {we}");
+    let (delta, fe_row) = (column(&t, "delta_over_R"), column(&t, "F_error_bar"));
+    assert!(fe_row.iter().all(|e| e.is_finite() && *e >= 0.0));
+    for (at, reference) in [(0.05, 1.659493), (0.19, 9.000983)] {
+        let i = (0..f.len()).find(|&i| leg[i] == 0.0 && (delta[i] - at).abs() < 1e-9).unwrap();
+        assert!(
+            fe_row[i] > 0.0 && (f[i] - reference).abs() <= fe_row[i] && fe_row[i] < 0.01 * f[i],
+            "F({at}) {} +- {}",
+            f[i],
+            fe_row[i]
+        );
+    }
 
     let p = s.table("states");
     let (pt, surf, r, pres, z) = (

@@ -3,9 +3,10 @@
 //! under prescribed displacement: the path from the reference state, and the inverted
 //! state at the same plate displacements where it exists).
 
+use super::fem_map::{MeshStudy, Outcome};
 use super::{check, finite};
 use crate::fem::contact::Plate;
-use crate::fem::cycle::{load_unload, Cycle, CycleOptions, Jump, Leg};
+use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Jump, Leg};
 use crate::fem::indent::Step;
 use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
 use crate::fem::system::{Base, Model};
@@ -83,10 +84,19 @@ impl ShellParams {
         self.n_meridian.is_none() && self.n_thickness == 2
     }
 
+    /// Elements along the meridian: as given, else resolving the Lennard-Jones range `g0`.
+    fn meridian(&self, g0: f64) -> usize {
+        self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0))
+    }
+
+    /// The mesh on `n` meridian elements.
+    fn mesh_on(&self, n: usize) -> ShellMesh {
+        ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
+    }
+
     /// The mesh, its meridian resolved for the Lennard-Jones range `g0` unless given.
     fn mesh(&self, g0: f64) -> ShellMesh {
-        let n = self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0));
-        ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
+        self.mesh_on(self.meridian(g0))
     }
 }
 
@@ -168,6 +178,12 @@ pub struct IndentParams {
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
     #[serde(default)]
     pub hold: super::fem_map::Hold,
+    /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
+    /// second cycle on twice the meridian elements, run alongside (`Cycles`; default false:
+    /// the declared error of the default mesh for forces, none for W or other meshes).
+    /// Three to four times the CPU time.
+    #[serde(default)]
+    pub mesh_study: bool,
 }
 
 fn default_g0() -> f64 {
@@ -196,13 +212,14 @@ impl IndentParams {
         check::non_negative(e, "mu", self.mu);
     }
 
-    fn model(&self) -> (Model, Plate) {
+    /// The model on `n` meridian elements and the plate.
+    fn model_on(&self, n: usize) -> (Model, Plate) {
         let base = match self.base {
             Support::Clamped => Base::Clamped,
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = Model::new(sh.mesh(self.g0), sh.E, sh.nu, base);
+        let model = Model::new(sh.mesh_on(n), sh.E, sh.nu, base);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
@@ -223,6 +240,127 @@ impl IndentParams {
         };
         load_unload(model, plate, self.shell.E, opt)
     }
+
+    /// The model and its cycle to `delta_max` (delta/R), and with `mesh_study` the cycle on
+    /// twice the meridian elements, computed alongside.
+    fn cycles(&self, delta_max: f64, unload: bool) -> (Model, Cycles) {
+        let n = self.shell.meridian(self.g0);
+        let on = |n: usize| {
+            let (model, plate) = self.model_on(n);
+            let c = self.cycle(&model, &plate, delta_max, unload);
+            (model, c)
+        };
+        let ((model, cycle), finer) = if self.mesh_study {
+            let (this, (_, finer)) = rayon::join(|| on(n), || on(2 * n));
+            (this, Some(finer))
+        } else {
+            (on(n), None)
+        };
+        let source = match (&finer, self.shell.default_mesh()) {
+            (Some(_), _) => "study",
+            (None, true) => "declared",
+            (None, false) => "none",
+        };
+        let step = delta_max * self.shell.R / self.steps as f64;
+        (model, Cycles { cycle, finer, default_mesh: self.shell.default_mesh(), mu: self.mu, source, step })
+    }
+}
+
+/// A state of a cycle as a table row: its leg (`loading`, `unloading`, `unstable`) and
+/// branch (`flattened`, `inverted`, `unstable`).
+struct Row<'a> {
+    leg: &'static str,
+    branch: &'static str,
+    step: &'a Step,
+}
+
+impl Row<'_> {
+    fn of(q: &CyclePoint) -> Row<'_> {
+        Row {
+            leg: if q.leg == Leg::Loading { "loading" } else { "unloading" },
+            branch: if q.inverted { "inverted" } else { "flattened" },
+            step: &q.step,
+        }
+    }
+
+    /// Every state of `c`: the legs in order, then the unstable branch.
+    fn all(c: &Cycle) -> Vec<Row<'_>> {
+        let mut rows: Vec<Row> = c.points.iter().map(Row::of).collect();
+        rows.extend(c.unstable.iter().map(|s| Row { leg: "unstable", branch: "unstable", step: s }));
+        rows
+    }
+}
+
+/// A cycle and, from `IndentParams::mesh_study`, its companion on twice the meridian
+/// elements; where the mesh's share of an error comes from (`source`: `study`, `declared`
+/// for the default mesh's measured error, `none`).
+struct Cycles {
+    cycle: Cycle,
+    finer: Option<Cycle>,
+    default_mesh: bool,
+    mu: f64,
+    source: &'static str,
+    /// The load step (mesh units).
+    step: f64,
+}
+
+impl Cycles {
+    /// The mesh's share of the error of a state's plate force (units of the force). With a
+    /// study: twice the difference from the finer cycle's force at the same delta, leg and
+    /// branch (`branch_force`, within a load step of a branch's end; Richardson's bound at
+    /// first order, as `fem_map::MeshStudy`), or |F| where the finer cycle has no such state
+    /// (it snapped elsewhere: whether this state exists is what the mesh decides). Without:
+    /// the default mesh's declared error, or 0.
+    fn force_error(&self, row: &Row) -> f64 {
+        let force = row.step.contact.force;
+        match &self.finer {
+            Some(finer) => branch_force(&Row::all(finer), row.leg, row.branch, row.step.delta, self.step)
+                .map_or(force.abs(), |f| 2.0 * (force - f).abs()),
+            None => declared_mesh_error(force, self.default_mesh, self.mu),
+        }
+    }
+
+    /// The mesh's shares of the errors of F_buckling and W (units of force and energy),
+    /// with whether the two meshes agree on the cycle's events (`fem_map::MeshStudy`); the
+    /// declared error of F_buckling on the default mesh and none for W without a study.
+    fn event_errors(&self, w: f64, finer_w: impl Fn(&Cycle) -> f64) -> MeshStudy {
+        let c = &self.cycle;
+        match &self.finer {
+            Some(finer) => {
+                MeshStudy::of(Outcome::of(&c.buckling, w, c), Outcome::of(&finer.buckling, finer_w(finer), finer))
+            }
+            None => MeshStudy {
+                f_error: c.buckling.map_or(0.0, |j| declared_mesh_error(j.force_before, self.default_mesh, self.mu)),
+                w_error: 0.0,
+                agrees: true,
+            },
+        }
+    }
+}
+
+/// The plate force on a leg and branch of a cycle's rows at plate displacement `delta`:
+/// linear between the first two consecutive converged states of that leg and branch that
+/// bracket it; else, within `reach` of delta, the force of the nearest one (a branch that
+/// ends a little earlier on this mesh, at a snap); None if there is none.
+fn branch_force(rows: &[Row], leg: &str, branch: &str, delta: f64, reach: f64) -> Option<f64> {
+    let on: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.leg == leg && r.branch == branch && r.step.converged)
+        .map(|r| (r.step.delta, r.step.contact.force))
+        .collect();
+    let bracketed = on.windows(2).find_map(|w| {
+        let ((d0, f0), (d1, f1)) = (w[0], w[1]);
+        if (d0 - delta) * (d1 - delta) > 0.0 {
+            return None;
+        }
+        Some(if d1 == d0 { f0 } else { f0 + (f1 - f0) * (delta - d0) / (d1 - d0) })
+    });
+    bracketed.or_else(|| {
+        on.iter()
+            .filter(|(d, _)| (d - delta).abs() <= reach)
+            .min_by(|a, b| (a.0 - delta).abs().total_cmp(&(b.0 - delta).abs()))
+            .map(|&(_, f)| f)
+    })
 }
 
 /// A load-unload cycle under prescribed plate displacement (thesis Figs. 3.2-3.3): the
@@ -232,7 +370,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 20;
+    const VERSION: u32 = 21;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -246,26 +384,17 @@ impl Kind for FemIndent {
 
     fn run(p: &IndentParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (model, plate) = p.model();
-        let c = p.cycle(&model, &plate, p.delta_max, true);
+        let (model, cycles) = p.cycles(p.delta_max, true);
+        let c = &cycles.cycle;
+        let rows = Row::all(c);
         let sh = &p.shell;
-        let mut rows: Vec<(&str, &str, &Step)> = Vec::new();
-        for q in &c.points {
-            let leg = if q.leg == Leg::Loading { "loading" } else { "unloading" };
-            rows.push((leg, if q.inverted { "inverted" } else { "flattened" }, &q.step));
-        }
-        for s in &c.unstable {
-            rows.push(("unstable", "unstable", s));
-        }
-        let (f_bar, default_mesh) = (sh.f_bar(), sh.default_mesh());
+        let f_bar = sh.f_bar();
         // W and its error for a complete cycle only (a partial one has no closed integral).
         let w_scale = sh.E * sh.h.powi(3);
-        let (w_bar, w_error_bar) = if c.complete {
-            (finite(c.dissipated() / w_scale), finite(c.dissipated_error() / w_scale))
-        } else {
-            (0.0, 0.0)
-        };
-        let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|(_, _, s)| finite(f(s))).collect::<Vec<f64>>();
+        let closed = |c: &Cycle| if c.complete { c.dissipated() } else { 0.0 };
+        let path_error = if c.complete { c.dissipated_error() } else { 0.0 };
+        let events = cycles.event_errors(closed(c), closed);
+        let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|r| finite(f(r.step))).collect::<Vec<f64>>();
         let n = rows.len();
         let leg_id = |l: &str| match l {
             "loading" => 0,
@@ -273,15 +402,15 @@ impl Kind for FemIndent {
             _ => 2,
         };
         let t = Table::new()
-            .with("leg", ColumnData::Str(rows.iter().map(|r| r.0.to_string()).collect()))
-            .with("leg_id", ColumnData::I64(rows.iter().map(|r| leg_id(r.0)).collect()))
-            .with("state", ColumnData::Str(rows.iter().map(|r| r.1.to_string()).collect()))
+            .with("leg", ColumnData::Str(rows.iter().map(|r| r.leg.to_string()).collect()))
+            .with("leg_id", ColumnData::I64(rows.iter().map(|r| leg_id(r.leg)).collect()))
+            .with("state", ColumnData::Str(rows.iter().map(|r| r.branch.to_string()).collect()))
             .with_f64("gamma", vec![p.gamma; n])
             .with_f64("mu", vec![p.mu; n])
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
-            // The resolution error of the default mesh (0 for others: not measured).
-            .with_f64("F_error_bar", col(&|s| declared_mesh_error(s.contact.force * f_bar, default_mesh, p.mu)))
+            // The mesh's share of the force's error (`Cycles::force_error`).
+            .with_f64("F_error_bar", rows.iter().map(|r| finite(cycles.force_error(r) * f_bar)).collect())
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
             .with_f64(
                 "slip_fraction",
@@ -294,47 +423,47 @@ impl Kind for FemIndent {
             .with_f64("A_bar", col(&|s| 2.0 * s.contact.area / (std::f64::consts::PI * sh.R * sh.R)))
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))
             .with_f64("max_penetration_over_h", col(&|s| s.contact.max_penetration / sh.h))
-            .with("stable", ColumnData::Bool(rows.iter().map(|r| r.2.stable).collect()))
+            .with("stable", ColumnData::Bool(rows.iter().map(|r| r.step.stable).collect()))
             // Flattened states past the stability test where no inverted state is reachable
             // (`fem::cycle::invert`): the shell stays there.
             .with(
                 "held",
                 ColumnData::Bool(
                     rows.iter()
-                        .map(|r| r.0 != "unstable" && r.1 == "flattened" && r.2.converged && !r.2.stable)
+                        .map(|r| r.leg != "unstable" && r.branch == "flattened" && r.step.converged && !r.step.stable)
                         .collect(),
                 ),
             )
-            .with("converged", ColumnData::Bool(rows.iter().map(|r| r.2.converged).collect()))
-            .with("iterations", ColumnData::I64(rows.iter().map(|r| r.2.iterations as i64).collect()))
+            .with("converged", ColumnData::Bool(rows.iter().map(|r| r.step.converged).collect()))
+            .with("iterations", ColumnData::I64(rows.iter().map(|r| r.step.iterations as i64).collect()))
             .with_f64("residual", col(&|s| s.residual))
             // The cycle's summary, repeated on every row (0 where there is no such event).
             .with("buckled", ColumnData::Bool(vec![c.buckling.is_some(); n]))
             .with_f64("F_buckling_bar", vec![finite(c.buckling.map_or(0.0, |b| b.force_before * f_bar)); n])
+            // The bisection's bracket plus the mesh's share.
             .with_f64(
                 "F_buckling_error_bar",
-                vec![finite(c.buckling.map_or(0.0, |b| snap_force_error(&b, default_mesh, p.mu) * f_bar)); n],
+                vec![finite(c.buckling.map_or(0.0, |b| (snap_bracket(&b) + events.f_error) * f_bar)); n],
             )
+            .with_f64("F_buckling_mesh_error_bar", vec![finite(events.f_error * f_bar); n])
             .with_f64("delta_buckling_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta / sh.R)); n])
             // Where the snap-through landed on the inverted branch (0: it did not).
             .with_f64("delta_landing_over_R", vec![finite(c.buckling.map_or(0.0, |b| b.delta_after / sh.R)); n])
             .with_f64("delta_snap_back_over_R", vec![finite(c.snap_back.map_or(0.0, |b| b.delta / sh.R)); n])
-            .with_f64("W_bar", vec![w_bar; n])
-            // The load path's share of W's error (`Cycle::dissipated_error`; the mesh's is not
-            // estimated).
-            .with_f64("W_error_bar", vec![w_error_bar; n])
+            .with_f64("W_bar", vec![finite(closed(c) / w_scale); n])
+            // The load path's share of W's error (`Cycle::dissipated_error`) plus the mesh's
+            // (with a study; else not estimated).
+            .with_f64("W_error_bar", vec![finite((path_error + events.w_error) / w_scale); n])
+            .with_f64("W_mesh_error_bar", vec![finite(events.w_error / w_scale); n])
+            .with("n_meridian", ColumnData::I64(vec![(model.mesh.elements.len() / sh.n_thickness) as i64; n]))
+            // Where the mesh's shares come from: `study` (2 n elements run too), `declared`
+            // (the default mesh's measured error, forces only) or `none`.
+            .with("mesh_error_source", ColumnData::Str(vec![cycles.source.to_string(); n]))
+            .with("mesh_study_agrees", ColumnData::Bool(vec![events.agrees; n]))
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }
-}
-
-/// Error estimate of a snap-through force: the bisection's bracket (the force rises from
-/// the last stable state to the first unstable one) plus, on the default mesh, its measured
-/// resolution error at friction `mu` (`fem::mesh::default_mesh_rel_error`; other meshes:
-/// the bracket only).
-pub(crate) fn snap_force_error(j: &Jump, default_mesh: bool, mu: f64) -> f64 {
-    snap_bracket(j) + declared_mesh_error(j.force_before, default_mesh, mu)
 }
 
 /// The declared resolution error of a force on the default mesh at friction `mu`
@@ -404,14 +533,14 @@ impl Kind for FemProfile {
 
     fn run(p: &ProfileParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (model, plate) = p.cycle.model();
         let top = p.points.iter().map(|q| q.delta).fold(0.0, f64::max);
-        let c = p.cycle.cycle(&model, &plate, top.min(p.cycle.delta_max), false);
+        let (model, cycles) = p.cycle.cycles(top.min(p.cycle.delta_max), false);
+        let c = &cycles.cycle;
         let sh = &p.cycle.shell;
         let m = &model.mesh;
         let mut t = ProfileRows::default();
         let inner: Vec<usize> = m.outer.iter().map(|&a| inner_of(m, a)).collect();
-        let (f_bar, default_mesh) = (sh.f_bar(), sh.default_mesh());
+        let f_bar = sh.f_bar();
         for (k, q) in p.points.iter().enumerate() {
             let Some(state) =
                 c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
@@ -421,6 +550,7 @@ impl Kind for FemProfile {
                 continue;
             };
             let s = &state.step;
+            let force_error = finite(cycles.force_error(&Row::of(state)) * f_bar);
             for (surface, nodes) in [(0, &m.outer), (1, &inner)] {
                 for (i, &a) in nodes.iter().enumerate() {
                     t.label.push(q.label.clone());
@@ -434,7 +564,7 @@ impl Kind for FemProfile {
                     t.contact.push(surface == 0 && s.contact.active[i]);
                     t.inverted.push(state.inverted);
                     t.force.push(finite(s.contact.force * f_bar));
-                    t.force_error.push(finite(declared_mesh_error(s.contact.force * f_bar, default_mesh, p.cycle.mu)));
+                    t.force_error.push(force_error);
                 }
             }
         }
@@ -449,7 +579,7 @@ impl Kind for FemProfile {
             .with_f64("p_over_E", t.pressure)
             .with_f64("contact", t.contact.iter().map(|&c| if c { 1.0 } else { 0.0 }).collect())
             .with("inverted", ColumnData::Bool(t.inverted))
-            // The state's plate force and its declared resolution error (`fem.indent`'s).
+            // The state's plate force and the mesh's share of its error (`fem.indent`'s).
             .with_f64("F_bar", t.force)
             .with_f64("F_error_bar", t.force_error)
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); rows])
@@ -490,4 +620,34 @@ fn inner_of(m: &ShellMesh, a: usize) -> usize {
 
 pub fn register(r: &mut Registry) {
     r.add::<FemMesh>().add::<FemIndent>().add::<FemProfile>();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::contact::ContactState;
+
+    fn step(delta: f64, force: f64, converged: bool) -> Step {
+        let contact = ContactState { force, ..Default::default() };
+        Step { delta, u: Vec::new(), contact, iterations: 1, residual: 0.0, converged, stable: true }
+    }
+
+    #[test]
+    fn a_branch_force_is_interpolated_on_its_own_leg_and_branch_or_taken_near_its_end() {
+        let steps = [step(0.1, 1.0, true), step(0.2, 3.0, true), step(0.3, 2.0, false), step(0.4, 10.0, true)];
+        let other = step(0.15, 100.0, true);
+        let mut rows: Vec<Row> = steps.iter().map(|s| Row { leg: "loading", branch: "flattened", step: s }).collect();
+        rows.push(Row { leg: "loading", branch: "inverted", step: &other });
+        let at = |d: f64, reach: f64| branch_force(&rows, "loading", "flattened", d, reach);
+        // Linear between the bracketing states; the unconverged one at 0.3 is not a state.
+        assert!((at(0.15, 0.0).unwrap() - 2.0).abs() < 1e-12);
+        assert!((at(0.3, 0.0).unwrap() - 6.5).abs() < 1e-12);
+        assert_eq!(at(0.1, 0.0), Some(1.0));
+        // Past the ends: the nearest state within reach, else nothing.
+        assert_eq!(at(0.45, 0.06), Some(10.0));
+        assert_eq!(at(0.05, 0.06), Some(1.0));
+        assert_eq!(at(0.45, 0.04), None);
+        assert_eq!(branch_force(&rows, "unloading", "flattened", 0.15, 1.0), None);
+        assert_eq!(branch_force(&rows, "loading", "inverted", 0.15, 0.0), Some(100.0));
+    }
 }

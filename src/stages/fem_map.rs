@@ -242,15 +242,15 @@ pub struct BucklingParams {
 /// nothing is known: the errors are the larger |F| and |W| of the two and `agrees` is
 /// false.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct MeshStudy {
-    f_error: f64,
-    w_error: f64,
-    agrees: bool,
+pub(crate) struct MeshStudy {
+    pub f_error: f64,
+    pub w_error: f64,
+    pub agrees: bool,
 }
 
 /// What a mesh study compares of one cycle.
 #[derive(Clone, Copy, Debug)]
-struct Outcome {
+pub(crate) struct Outcome {
     buckled: bool,
     /// F_buckling (0 without a snap) and W.
     force: f64,
@@ -259,7 +259,7 @@ struct Outcome {
 }
 
 impl Outcome {
-    fn of(buckling: &Option<Jump>, w: f64, c: &Cycle) -> Outcome {
+    pub(crate) fn of(buckling: &Option<Jump>, w: f64, c: &Cycle) -> Outcome {
         Outcome {
             buckled: buckling.is_some(),
             force: buckling.map_or(0.0, |j| j.force_before),
@@ -271,7 +271,7 @@ impl Outcome {
 
 impl MeshStudy {
     /// From the cycle on the mesh and on its companion with twice the meridian elements.
-    fn of(mesh: Outcome, finer: Outcome) -> MeshStudy {
+    pub(crate) fn of(mesh: Outcome, finer: Outcome) -> MeshStudy {
         let agrees = mesh.buckled == finer.buckled && mesh.complete && finer.complete;
         if agrees {
             let twice = |a: f64, b: f64| 2.0 * (a - b).abs();
