@@ -177,6 +177,9 @@ fn the_pull_off_error_estimate_covers_the_domain_and_the_mesh() {
   - name: reference
     kind: bem.pulloff
     params: {lambda: 1, k: 0.1, V: 1.0e-6, rel_tol: 1.0e-5}
+  - name: unresolved
+    kind: bem.pulloff
+    params: {lambda: 3, k: 0.1, V: 1.0e-6, n: 200}
 ",
     );
     let (c, r) = (s.table("coarse"), s.table("reference"));
@@ -187,6 +190,15 @@ fn the_pull_off_error_estimate_covers_the_domain_and_the_mesh() {
     assert!(error > 2e-5, "the reference differs measurably: {error:e}");
     assert!(error <= estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
     assert!(column(&r, "error_estimate")[0] < 0.5 * error, "the reference is much finer");
+    // The default mesh has 7.1 elements per cohesive zone (pi/(8 lambda^2) = 0.39 over
+    // elements of 2 L/n = 0.055). On 200 elements at lambda = 3 the zone (0.044) is 0.69 of an
+    // element: the pull-off comes out at -0.164 against -1.727 and its Richardson estimate
+    // (0.95) does not cover that; the point is not converged.
+    assert!((column(&c, "zone_elements")[0] - 7.14).abs() < 0.01 && column(&c, "converged")[0] == 1.0);
+    let u = s.table("unresolved");
+    assert!((column(&u, "zone_elements")[0] - 0.6916).abs() < 1e-3, "{}", column(&u, "zone_elements")[0]);
+    assert_eq!(column(&u, "converged")[0], 0.0);
+    assert!(column(&u, "W_pulloff")[0].is_finite());
 }
 
 #[test]

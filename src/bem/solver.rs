@@ -161,11 +161,30 @@ fn contact_scale(p: &Params) -> f64 {
 /// refinement to rel_tol follows (at lambda = 10 the speed-first path converges from it).
 pub fn starting_mesh(p: &Params, rel_tol: f64) -> Mesh {
     let half_length = domain_half_length(p, rel_tol);
-    let zone = PI / (8.0 * p.lambda * p.lambda);
-    let h = (contact_scale(p) / 40.0).min(zone / 2.0);
+    let h = (contact_scale(p) / 40.0).min(cohesive_zone(p.lambda) / 2.0);
     let n = ((2.0 * half_length / h).ceil() as usize).clamp(64, 8000);
     Mesh { n, half_length }
 }
+
+/// The length of the cohesive zone at a crack front, about pi/(8 lambda^2) (Maugis-Dugdale in
+/// 2D, at the relaxed modulus: the shortest it gets, a stiffer material lengthening it).
+pub fn cohesive_zone(lambda: f64) -> f64 {
+    PI / (8.0 * lambda * lambda)
+}
+
+/// Elements of `mesh` per cohesive zone (`cohesive_zone`): a meshing diagnostic. A starting
+/// mesh has at least 2 unless it is capped at 8000 elements.
+pub fn zone_elements(lambda: f64, mesh: Mesh) -> f64 {
+    cohesive_zone(lambda) / (2.0 * mesh.a())
+}
+
+/// Below one element per cohesive zone the crack front is not resolved, and a mesh
+/// refinement's difference does not bound a pull-off's error. Measured (`pipelines/bench.yaml`,
+/// `pulloff_n200`, session 17): at lambda = 3 on 200 elements (0.69 per zone) the pull-off
+/// load is 90 % off at V = 1e-6 and its Richardson estimate covers 1 of 4 points; every
+/// configuration with 2 or more per zone is covered (error / estimate <= 0.46). `bem.sweep`'s
+/// mu* is covered at 1.39 per zone (n = 400, lambda = 3).
+pub const MIN_ZONE_ELEMENTS: f64 = 1.0;
 
 /// The default requested accuracy of mu* (relative).
 pub const DEFAULT_REL_TOL: f64 = 1e-3;

@@ -124,7 +124,7 @@ pub struct BemSweep;
 
 impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
-    const VERSION: u32 = 9;
+    const VERSION: u32 = 10;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
     type Params = BemParams;
@@ -157,6 +157,8 @@ impl Kind for BemSweep {
             .with_f64("error_estimate", vec![if estimate.is_finite() { estimate } else { f64::MAX }])
             .with("n", ColumnData::I64(vec![s.mesh.n as i64]))
             .with_f64("half_length", vec![s.mesh.half_length])
+            // Elements per cohesive zone (`solver::zone_elements`), a meshing diagnostic.
+            .with_f64("zone_elements", vec![finite(solver::zone_elements(p.lambda, s.mesh))])
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
         Ok(t.into())
     }
@@ -171,7 +173,7 @@ pub struct BemProfile;
 
 impl Kind for BemProfile {
     const NAME: &'static str = "bem.profile";
-    const VERSION: u32 = 8;
+    const VERSION: u32 = 9;
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
@@ -206,6 +208,7 @@ impl Kind for BemProfile {
             .with_f64("mu_star", vec![finite(s.friction().mu_star); n])
             .with_f64("error_estimate", vec![estimate.min(f64::MAX); n])
             .with("n", ColumnData::I64(vec![s.mesh.n as i64; n]))
+            .with_f64("zone_elements", vec![finite(solver::zone_elements(p.lambda, s.mesh)); n])
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }

@@ -36,12 +36,14 @@ const W_START: f64 = 0.1;
 const APPROACH_TOL: f64 = 1e-3;
 
 /// The pull-off load at one (lambda, k, V), with its error estimate: the Richardson
-/// estimate of the same search on half the elements, and the domain's truncation.
+/// estimate of the same search on half the elements, and the domain's truncation. Not
+/// converged on a mesh with less than one element per cohesive zone (`zone_elements`,
+/// `bem::solver::MIN_ZONE_ELEMENTS`).
 pub struct BemPullOff;
 
 impl Kind for BemPullOff {
     const NAME: &'static str = "bem.pulloff";
-    const VERSION: u32 = 8;
+    const VERSION: u32 = 9;
     const DOC: &'static str =
         "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked by pseudo-arclength in approach and load) at speed V";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];
@@ -94,6 +96,11 @@ impl Kind for BemPullOff {
         // carries beyond the domain.
         let reported =
             ErrorShares { mesh: estimate, domain: solver::domain_load_error(&start, first.half_length) }.reported();
+        // A cohesive zone shorter than an element: the refinement's difference bounds nothing
+        // (`solver::MIN_ZONE_ELEMENTS`), so the mesh has not converged the pull-off whatever
+        // the search did.
+        let zone_elements = solver::zone_elements(p.lambda, Mesh { n, ..first });
+        let resolved = zone_elements >= solver::MIN_ZONE_ELEMENTS;
         let (load, width, edges, mu, evaluations, iterations) = match &po {
             Some(r) => (
                 r.load,
@@ -118,12 +125,13 @@ impl Kind for BemPullOff {
             .with_f64("x_trail", vec![finite(edges.1)])
             .with_f64("mu_star", vec![finite(mu)])
             .with_f64("F_T", vec![finite(mu * load.abs())])
-            .with("converged", ColumnData::Bool(vec![converged && load.is_finite()]))
+            .with("converged", ColumnData::Bool(vec![converged && resolved && load.is_finite()]))
             .with("evaluations", ColumnData::I64(vec![evaluations as i64]))
             .with("iterations", ColumnData::I64(vec![iterations as i64]))
             .with_f64("error_estimate", vec![reported])
             .with("n", ColumnData::I64(vec![fine_mesh.n as i64]))
             .with_f64("half_length", vec![fine_mesh.half_length])
+            .with_f64("zone_elements", vec![finite(zone_elements)])
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
         Ok(t.into())
     }
