@@ -190,6 +190,8 @@ fn the_mesh_study_covers_the_error_of_a_coarse_mesh() {
     let (w, we, wm) = (one("W_Nmm"), one("W_error_Nmm"), one("W_mesh_error_Nmm"));
     assert!(wm > 0.0 && we > wm && (w - 0.0200).abs() <= we && we < 0.5 * w, "W {w} +- {we} (mesh {wm})");
     assert_eq!(strings(&t, "mesh_error_source"), vec!["study"]);
+    // Without friction none of W is done against it.
+    assert_eq!(one("W_friction_Nmm"), 0.0);
 }
 
 #[test]

@@ -248,10 +248,11 @@ impl IndentParams {
         let on = |n: usize| {
             let (model, plate) = self.model_on(n);
             let c = self.cycle(&model, &plate, delta_max, unload);
-            (model, c)
+            let friction = if c.complete { c.friction_work(&plate.weights) } else { 0.0 };
+            (model, (c, friction))
         };
-        let ((model, cycle), finer) = if self.mesh_study {
-            let (this, (_, finer)) = rayon::join(|| on(n), || on(2 * n));
+        let ((model, (cycle, friction)), finer) = if self.mesh_study {
+            let (this, (_, (finer, _))) = rayon::join(|| on(n), || on(2 * n));
             (this, Some(finer))
         } else {
             (on(n), None)
@@ -262,7 +263,7 @@ impl IndentParams {
             (None, false) => "none",
         };
         let step = delta_max * self.shell.R / self.steps as f64;
-        (model, Cycles { cycle, finer, default_mesh: self.shell.default_mesh(), mu: self.mu, source, step })
+        (model, Cycles { cycle, finer, default_mesh: self.shell.default_mesh(), mu: self.mu, source, step, friction })
     }
 }
 
@@ -302,6 +303,8 @@ struct Cycles {
     source: &'static str,
     /// The load step (mesh units).
     step: f64,
+    /// The work done against friction on a complete cycle (`Cycle::friction_work`), else 0.
+    friction: f64,
 }
 
 impl Cycles {
@@ -370,7 +373,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 21;
+    const VERSION: u32 = 22;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -455,6 +458,10 @@ impl Kind for FemIndent {
             // (with a study; else not estimated).
             .with_f64("W_error_bar", vec![finite((path_error + events.w_error) / w_scale); n])
             .with_f64("W_mesh_error_bar", vec![finite(events.w_error / w_scale); n])
+            // The part of W done against friction on the quasi-static pieces of the cycle
+            // (`Cycle::friction_work`); the rest is lost in the jumps and the adhesive
+            // hysteresis.
+            .with_f64("W_friction_bar", vec![finite(cycles.friction / w_scale); n])
             .with("n_meridian", ColumnData::I64(vec![(model.mesh.elements.len() / sh.n_thickness) as i64; n]))
             // Where the mesh's shares come from: `study` (2 n elements run too), `declared`
             // (the default mesh's measured error, forces only) or `none`.

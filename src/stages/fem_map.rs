@@ -289,7 +289,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 19;
+    const VERSION: u32 = 20;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
@@ -319,16 +319,17 @@ impl Kind for FemBuckling {
             // The loop area only for a complete cycle (a partial one has no closed integral).
             let (w, w_error) =
                 if p.dissipation && c.complete { (c.dissipated(), c.dissipated_error()) } else { (0.0, 0.0) };
-            (b, w, w_error, c)
+            let friction = if p.dissipation && c.complete { c.friction_work(&plate.weights) } else { 0.0 };
+            (b, w, w_error, (c, friction))
         };
-        let ((b, w, w_error, c), finer) = if p.mesh_study {
+        let ((b, w, w_error, (c, friction)), finer) = if p.mesh_study {
             let (this, finer) = rayon::join(|| cycle_on(n), || cycle_on(2 * n));
             (this, Some(finer))
         } else {
             (cycle_on(n), None)
         };
         let study =
-            finer.as_ref().map(|(fb, fw, _, fc)| MeshStudy::of(Outcome::of(&b, w, &c), Outcome::of(fb, *fw, fc)));
+            finer.as_ref().map(|(fb, fw, _, (fc, _))| MeshStudy::of(Outcome::of(&b, w, &c), Outcome::of(fb, *fw, fc)));
         let fb = m.f_bar(p.h_over_R);
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
@@ -363,6 +364,10 @@ impl Kind for FemBuckling {
             .with_f64("W_error_bar", vec![finite((w_error + w_mesh) / (m.E * h.powi(3)))])
             .with_f64("W_error_Nmm", vec![finite(w_error + w_mesh)])
             .with_f64("W_mesh_error_Nmm", vec![finite(w_mesh)])
+            // The part of W done against friction on the quasi-static pieces of the cycle
+            // (`Cycle::friction_work`); the rest is lost in the jumps and the adhesive
+            // hysteresis.
+            .with_f64("W_friction_Nmm", vec![finite(friction)])
             .with("n_meridian", ColumnData::I64(vec![n as i64]))
             // Where the mesh's share comes from: `study` (2 n elements run too), `declared`
             // (the default mesh's measured error, F only) or `none`.
