@@ -193,6 +193,27 @@ impl TangentSink for Stiffness {
 }
 
 impl Stiffness {
+    /// The Cholesky factorisation of the free-free block's lower triangle, written straight
+    /// into the factor's rows (row j of U holds column j's entries on and below the
+    /// diagonal) instead of through a full `Band` with the LU's room for fill (3 x the
+    /// storage to clear and fill); None if it is not positive definite.
+    fn lower_band_cholesky(&self) -> Option<BandCholesky> {
+        let p = &self.pattern;
+        let (n, kl) = (p.n_free(), p.half_band);
+        let w = kl + 1;
+        let mut u = vec![0.0; n * w];
+        let (col_ptr, row_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
+        for j in 0..n {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let i = row_idx[k];
+                if i >= j {
+                    u[j * w + i - j] = self.values[k];
+                }
+            }
+        }
+        BandCholesky::factor(n, kl, u)
+    }
+
     /// The free-free block as a band matrix, with room for the LU's fill.
     fn band(&self) -> Band {
         let p = &self.pattern;
@@ -281,22 +302,39 @@ impl Model {
         Some((f, k))
     }
 
-    fn assemble_anew(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
-        // Each element writes its forces and tangent in place (collecting them would copy
-        // the 2 kB blocks around).
-        let mut local = vec![([0.0; 16], [[0.0; 16]; 16]); self.mesh.elements.len()];
-        let ok = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
+    /// `local` of every element at displacements `u`, computed in parallel, each written in
+    /// place (collecting them would copy the 2 kB tangent blocks around); None if any
+    /// element gives None (inverted).
+    fn per_element<T: Send + Copy>(
+        &self,
+        u: &[f64],
+        zero: T,
+        local: impl Fn(&Geometry, &[[f64; 2]; 8]) -> Option<T> + Sync,
+    ) -> Option<Vec<T>> {
+        let mut out = vec![zero; self.mesh.elements.len()];
+        let ok = out.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
             let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-            forces_and_tangent_of(geometry, &ue, self.mu, self.lambda).map(|fk| *out = fk).is_some()
+            local(geometry, &ue).map(|v| *out = v).is_some()
         });
-        if !ok {
-            return None;
+        ok.then_some(out)
+    }
+
+    /// Adds element `el`'s forces into the global vector.
+    fn scatter_forces(f: &mut [f64], el: &[usize; 8], fe: &[f64; 16]) {
+        for q in 0..16 {
+            f[2 * el[q / 2] + q % 2] += fe[q];
         }
+    }
+
+    fn assemble_anew(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
+        let local = self.per_element(u, ([0.0; 16], [[0.0; 16]; 16]), |geometry, ue| {
+            forces_and_tangent_of(geometry, ue, self.mu, self.lambda)
+        })?;
         let mut f = vec![0.0; self.n_dofs()];
         let mut k = self.zero_stiffness();
         for ((el, slots), (fe, ke)) in self.mesh.elements.iter().zip(&self.pattern.slots).zip(&local) {
+            Model::scatter_forces(&mut f, el, fe);
             for q in 0..16 {
-                f[2 * el[q / 2] + q % 2] += fe[q];
                 for r in 0..16 {
                     let slot = slots[16 * q + r];
                     if slot != u32::MAX {
@@ -311,19 +349,10 @@ impl Model {
     /// The internal forces alone (bitwise those of `assemble`), or None if an element is
     /// inverted: a line search's trial steps, most of them rejected, need no tangent.
     pub fn internal_forces(&self, u: &[f64]) -> Option<Vec<f64>> {
-        let mut local = vec![[0.0; 16]; self.mesh.elements.len()];
-        let ok = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
-            let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-            forces_of(geometry, &ue, self.mu, self.lambda).map(|fe| *out = fe).is_some()
-        });
-        if !ok {
-            return None;
-        }
+        let local = self.per_element(u, [0.0; 16], |geometry, ue| forces_of(geometry, ue, self.mu, self.lambda))?;
         let mut f = vec![0.0; self.n_dofs()];
         for (el, fe) in self.mesh.elements.iter().zip(&local) {
-            for q in 0..16 {
-                f[2 * el[q / 2] + q % 2] += fe[q];
-            }
+            Model::scatter_forces(&mut f, el, fe);
         }
         Some(f)
     }
@@ -405,7 +434,7 @@ impl Model {
 
     /// The Cholesky factorisation of the lower triangle of `k`, if it is positive definite.
     fn cholesky(&self, k: &Stiffness) -> Option<BandCholesky> {
-        k.band().cholesky()
+        k.lower_band_cholesky()
     }
 
     /// Whether the free tangent is positive definite (its Cholesky factorisation exists):

@@ -123,28 +123,7 @@ impl Band {
                 u[i * w + j - i] = self.values[self.at(j, i)];
             }
         }
-        for k in 0..n {
-            let d = u[k * w];
-            if !(d > 0.0) || !d.is_finite() {
-                return None;
-            }
-            let d = d.sqrt();
-            let last = (k + kl).min(n - 1);
-            let (head, tail) = u.split_at_mut((k + 1) * w);
-            let row = &mut head[k * w..=k * w + last - k];
-            row[0] = d;
-            row[1..].iter_mut().for_each(|v| *v /= d);
-            for i in k + 1..=last {
-                let uki = row[i - k];
-                if uki != 0.0 {
-                    let target = &mut tail[(i - k - 1) * w..=(i - k - 1) * w + last - i];
-                    for (a, b) in target.iter_mut().zip(&row[i - k..]) {
-                        *a -= uki * b;
-                    }
-                }
-            }
-        }
-        Some(BandCholesky { n, kl, u })
+        BandCholesky::factor(n, kl, u)
     }
 }
 
@@ -189,6 +168,37 @@ pub struct BandCholesky {
 }
 
 impl BandCholesky {
+    /// Factorises A = U^T U in place, A's lower band given as the rows of U (row i holds
+    /// a_ji for j = i ..= i + kl, zero past n), or None if A is not positive definite.
+    /// Right-looking, on the rows of U, so that every update is a contiguous row operation,
+    /// as in `Band::lu`.
+    pub fn factor(n: usize, kl: usize, mut u: Vec<f64>) -> Option<BandCholesky> {
+        let w = kl + 1;
+        assert_eq!(u.len(), n * w);
+        for k in 0..n {
+            let d = u[k * w];
+            if !(d > 0.0) || !d.is_finite() {
+                return None;
+            }
+            let d = d.sqrt();
+            let last = (k + kl).min(n - 1);
+            let (head, tail) = u.split_at_mut((k + 1) * w);
+            let row = &mut head[k * w..=k * w + last - k];
+            row[0] = d;
+            row[1..].iter_mut().for_each(|v| *v /= d);
+            for i in k + 1..=last {
+                let uki = row[i - k];
+                if uki != 0.0 {
+                    let target = &mut tail[(i - k - 1) * w..=(i - k - 1) * w + last - i];
+                    for (a, b) in target.iter_mut().zip(&row[i - k..]) {
+                        *a -= uki * b;
+                    }
+                }
+            }
+        }
+        Some(BandCholesky { n, kl, u })
+    }
+
     /// Solves A x = b in place.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         let (n, kl, w) = (self.n, self.kl, self.kl + 1);
