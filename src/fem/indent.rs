@@ -90,8 +90,7 @@ fn evaluate_with(
     let mut fext = vec![0.0; model.n_dofs()];
     let mut q = vec![0.0; model.n_dofs()];
     let state = plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut trip, &mut q, tangent);
-    let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
-    let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (r, norm) = free_residual(model, &fint, &fext);
     q.iter_mut().zip(&model.fixed).for_each(|(v, &f)| {
         if f {
             *v = 0.0
@@ -103,6 +102,13 @@ fn evaluate_with(
     Some(Evaluation { residual: r, tangent: trip, contact: state, norm, q })
 }
 
+/// The residual f_int - f_ext on the free dofs (zero on the fixed ones) and its max-norm.
+fn free_residual(model: &Model, fint: &[f64], fext: &[f64]) -> (Vec<f64>, f64) {
+    let r: Vec<f64> = (0..model.n_dofs()).map(|i| if model.fixed[i] { 0.0 } else { fint[i] - fext[i] }).collect();
+    let norm = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    (r, norm)
+}
+
 /// The residual's max-norm at displacements `u` (`evaluate`'s, bitwise) without the tangent:
 /// a line search's trial point. None if an element is inverted or the residual not finite.
 fn trial_norm(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]) -> Option<f64> {
@@ -110,7 +116,7 @@ fn trial_norm(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]
     let mut fext = vec![0.0; model.n_dofs()];
     let mut q = vec![0.0; model.n_dofs()];
     plate.apply(&model.mesh, u, apex_z(model) - delta, stick, &mut fext, &mut NoTangent, &mut q, Tangent::Exact);
-    let norm = (0..model.n_dofs()).filter(|&i| !model.fixed[i]).fold(0.0f64, |m, i| m.max((fint[i] - fext[i]).abs()));
+    let (_, norm) = free_residual(model, &fint, &fext);
     norm.is_finite().then_some(norm)
 }
 
@@ -123,7 +129,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
         return Step::failed(delta, u);
     };
     // Backtracking on the residual norm (and on inverted elements) along `du`, the trial
-    // points without their tangent (`trial_at`: most of a frictional solve's trials are
+    // points without their tangent (`trial_norm`: most of a frictional solve's trials are
     // rejected). If no step down to 1/128 lowers it, the longest admissible step is taken: at
     // the kinks of the interface laws (contact status, stick/slip) a tiny step only sends
     // Newton back where it came from, a 2-cycle; the long step lets it change the status set.
