@@ -202,29 +202,32 @@ impl Stiffness {
         let (n, kl) = (p.n_free(), p.half_band);
         let w = kl + 1;
         let mut u = vec![0.0; n * w];
+        let mut end: Vec<usize> = (0..n).collect();
         let (col_ptr, row_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
         for j in 0..n {
             for k in col_ptr[j]..col_ptr[j + 1] {
                 let i = row_idx[k];
                 if i >= j {
                     u[j * w + i - j] = self.values[k];
+                    end[j] = end[j].max(i);
                 }
             }
         }
-        BandCholesky::factor(n, kl, u)
+        BandCholesky::factor(n, kl, u, end)
     }
 
     /// The free-free block as a band matrix, with room for the LU's fill.
     fn band(&self) -> Band {
         let p = &self.pattern;
-        let mut band = Band::zeros(p.n_free(), p.half_band, p.half_band);
+        let hb = p.half_band;
         let (col_ptr, row_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
-        for j in 0..p.n_free() {
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                band.set(row_idx[k], j, self.values[k]);
+        // Row i's entries (i, j) sit at the transposed slots of column i's (j, i) (the
+        // pattern is symmetric).
+        Band::from_rows(p.n_free(), hb, hb, |i, w| {
+            for k in col_ptr[i]..col_ptr[i + 1] {
+                w[row_idx[k] + hb - i] = self.values[p.transposed[k] as usize];
             }
-        }
-        band
+        })
     }
 
     /// The mean of the free diagonal's magnitudes (a stiffness scale).
