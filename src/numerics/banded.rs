@@ -408,6 +408,7 @@ mod tests {
             assert!(lu.pivots.iter().enumerate().any(|(k, &p)| p != k));
             lu.solve_in_place(&mut x);
             let y = whole_window_lu_solve(band.clone(), &b);
+            assert!(x.iter().zip(&y).all(|(a, b)| a.to_bits() == b.to_bits()), "n {n}: LU differs");
             let r = residual(&dense, &x, &b);
             assert!(r < 1e-13, "n {n} kl {kl} ku {ku}: backward error {r}");
             // Cholesky of a symmetric definite matrix with the same profile (its lower band).
