@@ -16,6 +16,8 @@
 // Index loops over nodes and components read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use crate::numerics::vectorized_fn;
+
 /// Lame constants (mu, lambda) of Young's modulus and Poisson's ratio.
 pub fn lame(e: f64, nu: f64) -> (f64, f64) {
     (e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
@@ -102,6 +104,7 @@ impl Geometry {
 }
 
 /// Components (F_rR, F_rZ, F_zR, F_zZ, F_tt) at a point.
+#[inline(always)]
 fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
     let mut f = [1.0, 0.0, 0.0, 1.0, 1.0];
     for a in 0..8 {
@@ -118,6 +121,7 @@ fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
 const INDEX: [(usize, usize); 5] = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)];
 
 /// J, ln J and F^-1 (3 x 3, block diagonal) of F, or None if J <= 0.
+#[inline(always)]
 fn kinematics(f: &[f64; 5]) -> Option<(f64, [[f64; 3]; 3])> {
     let det2 = f[0] * f[3] - f[1] * f[2];
     let j = det2 * f[4];
@@ -134,6 +138,7 @@ fn kinematics(f: &[f64; 5]) -> Option<(f64, [[f64; 3]; 3])> {
 }
 
 /// Neo-Hookean P (components) from F, ln J and F^-1.
+#[inline(always)]
 fn piola(f: &[f64; 5], lnj: f64, inv: &[[f64; 3]; 3], mu: f64, lambda: f64) -> [f64; 5] {
     // F^-T_iJ = F^-1_Ji.
     std::array::from_fn(|c| {
@@ -143,6 +148,7 @@ fn piola(f: &[f64; 5], lnj: f64, inv: &[[f64; 3]; 3], mu: f64, lambda: f64) -> [
 }
 
 /// Neo-Hookean P (components) and A = dP/dF (5 x 5), or None if J <= 0.
+#[inline(always)]
 fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5])> {
     let (lnj, inv) = kinematics(f)?;
     let p = piola(f, lnj, &inv, mu, lambda);
@@ -157,14 +163,20 @@ fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5]
 }
 
 /// Node b's internal force (r, z) at a Gauss point with stress p (one term of Int G^T P dV0).
+#[inline(always)]
 fn nodal_force(pt: &Point, b: usize, p: &[f64; 5]) -> [f64; 2] {
     let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], pt.n[b] / pt.radius);
     [(dr * p[0] + dz * p[1] + t * p[4]) * pt.dv, (dr * p[2] + dz * p[3]) * pt.dv]
 }
 
-/// The internal forces of `forces_and_tangent_of` alone (bitwise the same), without the
-/// tangent: what a line search needs of a trial step.
-pub fn forces_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> {
+vectorized_fn! {
+    /// The internal forces of `forces_and_tangent_of` alone (bitwise the same), without the
+    /// tangent: what a line search needs of a trial step.
+    pub fn forces_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> = forces_kernel;
+}
+
+#[inline(always)]
+fn forces_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> {
     let mut fint = [0.0; 16];
     for pt in &geometry.0 {
         let f = deformation(pt, u);
@@ -211,14 +223,21 @@ pub fn forces_and_tangent(
     forces_and_tangent_of(&Geometry::new(x), u, mu, lambda)
 }
 
-/// `forces_and_tangent` of an element whose Gauss-point geometry is known.
-///
-/// G (5 x 16) is sparse: the column of u_r at node b is (dN_b/dR, dN_b/dZ, 0, 0, N_b/R), that
-/// of u_z (0, 0, dN_b/dR, dN_b/dZ, 0); the products below use only its nonzeros, and K =
-/// Int G^T A G dV0 is symmetric (A = dP/dF is, W being a potential), so only r >= q is
-/// summed and mirrored.
+vectorized_fn! {
+    /// `forces_and_tangent` of an element whose Gauss-point geometry is known.
+    ///
+    /// G (5 x 16) is sparse: the column of u_r at node b is (dN_b/dR, dN_b/dZ, 0, 0, N_b/R), that
+    /// of u_z (0, 0, dN_b/dR, dN_b/dZ, 0); the products below use only its nonzeros, and K =
+    /// Int G^T A G dV0 is symmetric (A = dP/dF is, W being a potential), so only r >= q is
+    /// summed and mirrored.
+    #[allow(clippy::type_complexity)]
+    pub fn forces_and_tangent_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64)
+        -> Option<([f64; 16], [[f64; 16]; 16])> = tangent_kernel;
+}
+
+#[inline(always)]
 #[allow(clippy::type_complexity)]
-pub fn forces_and_tangent_of(
+fn tangent_kernel(
     geometry: &Geometry,
     u: &[[f64; 2]; 8],
     mu: f64,
@@ -324,6 +343,24 @@ mod tests {
                 let kd = (fp[r] - fm[r]) / (2.0 * h);
                 assert!((kd - k[r][q]).abs() < 1e-5 * k[r][r].abs().max(1.0), "K[{r}][{q}]: {kd} vs {}", k[r][q]);
             }
+        }
+    }
+
+    #[test]
+    fn the_vectorized_kernels_give_the_baselines_bits() {
+        // `forces_and_tangent_of` and `forces_of` run the kernels compiled for AVX2 where the
+        // CPU has it; called directly here, the kernels are compiled for the baseline.
+        let (mu, lambda) = lame(1.3, 0.45);
+        let geometry = Geometry::new(&element());
+        for scale in [0.0, 0.01, 0.05] {
+            let u = displacement(scale);
+            let (f, k) = forces_and_tangent_of(&geometry, &u, mu, lambda).unwrap();
+            let (f0, k0) = tangent_kernel(&geometry, &u, mu, lambda).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&f), bits(&f0));
+            assert_eq!(bits(k.as_flattened()), bits(k0.as_flattened()));
+            assert_eq!(bits(&forces_of(&geometry, &u, mu, lambda).unwrap()), bits(&f0));
+            assert_eq!(bits(&forces_kernel(&geometry, &u, mu, lambda).unwrap()), bits(&f0));
         }
     }
 

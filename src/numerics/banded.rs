@@ -17,6 +17,8 @@
 // Index loops over rows and columns read like the factorisations they implement.
 #![allow(clippy::needless_range_loop)]
 
+use super::vectorized_fn;
+
 /// A band matrix: row i holds columns i - kl ..= i + kl + ku (the extra kl columns on the
 /// right take the fill of the row interchanges of the LU).
 #[derive(Clone, Debug)]
@@ -102,7 +104,12 @@ impl Band {
     /// tangent rarely needs an interchange, so most rows end near column i + ku, and half
     /// of the window (the kl columns of fill room) is never touched. The result is the
     /// full-window factorisation's, bitwise (up to the sign of zeros).
-    pub fn lu(mut self) -> Option<BandLu> {
+    pub fn lu(self) -> Option<BandLu> {
+        lu_of(self)
+    }
+
+    #[inline(always)]
+    fn lu_kernel(mut self) -> Option<BandLu> {
         let (n, kl) = (self.n, self.kl);
         let mut pivots = vec![0; n];
         let mut lower = vec![0.0; n * kl];
@@ -175,6 +182,14 @@ impl Band {
     }
 }
 
+vectorized_fn! {
+    fn lu_of(band: Band) -> Option<BandLu> = Band::lu_kernel;
+}
+
+vectorized_fn! {
+    fn cholesky_of(n: usize, kl: usize, u: Vec<f64>, end: Vec<usize>) -> Option<BandCholesky> = BandCholesky::factor_kernel;
+}
+
 /// A band LU factorisation: the multipliers of column k below the diagonal (not permuted
 /// by later interchanges, as in LAPACK), U on and above it, and row k swapped with
 /// `pivots[k]` at step k. The multipliers are kept a second time, column by column in
@@ -231,7 +246,12 @@ impl BandCholesky {
     /// positive definite.
     /// Right-looking, on the rows of U, so that every update is a contiguous row operation,
     /// as in `Band::lu`, and, as there, stops at the row's last entry that can be nonzero.
-    pub fn factor(n: usize, kl: usize, mut u: Vec<f64>, mut end: Vec<usize>) -> Option<BandCholesky> {
+    pub fn factor(n: usize, kl: usize, u: Vec<f64>, end: Vec<usize>) -> Option<BandCholesky> {
+        cholesky_of(n, kl, u, end)
+    }
+
+    #[inline(always)]
+    fn factor_kernel(n: usize, kl: usize, mut u: Vec<f64>, mut end: Vec<usize>) -> Option<BandCholesky> {
         let w = kl + 1;
         assert_eq!(u.len(), n * w);
         assert!(end.len() == n && end.iter().enumerate().all(|(i, &e)| e >= i && e < n && e <= i + kl));
