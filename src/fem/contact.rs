@@ -18,11 +18,6 @@
 //! state hands its anchors to the next solve (backward Euler). The consistent tangent is
 //! k_t w_a (stick) or the non-symmetric mu k_n w_a sign(t) coupling of the shear to the
 //! penetration (slip).
-//!
-//! Both laws are linear in the displacements on each of their pieces (`Piece`: open,
-//! pressed, stick, slip either way; `Plate::piece`, `Plate::piece_law`): Newton's step keeps
-//! the Coulomb law piecewise linear instead of linearising it at the iterate
-//! (`indent::piecewise_step`).
 
 use super::adhesion::{Adhesion, Tangent};
 use super::mesh::ShellMesh;
@@ -48,20 +43,6 @@ pub struct ContactState {
     pub shear: Vec<f64>,
     pub slipping: Vec<bool>,
     pub stick: Vec<f64>,
-}
-
-/// The piece of the interface laws an outer node is on; the penalty contact and the
-/// regularised Coulomb law are linear in the displacements on each.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Piece {
-    /// Not touching the plate (d <= 0): no penalty force.
-    Open,
-    /// Pressed, without friction.
-    Frictionless,
-    /// Pressed and sticking to its anchor.
-    Stick,
-    /// Pressed and slipping, outwards (true) or inwards.
-    Slip(bool),
 }
 
 /// Tangential penalty over the normal one: soft enough that Newton does not cycle between
@@ -145,60 +126,6 @@ impl Plate {
         penalty + adhesive
     }
 
-    /// Node k's anchor: the last converged state's (`stick`), or its reference radius.
-    fn anchor(&self, mesh: &ShellMesh, stick: &[f64], k: usize) -> f64 {
-        stick.get(k).copied().unwrap_or(mesh.nodes[mesh.outer[k]][0])
-    }
-
-    /// The piece of the penalty and friction laws outer node k is on at displacements `u`.
-    pub fn piece(&self, mesh: &ShellMesh, u: &[f64], z_plate: f64, stick: &[f64], k: usize) -> Piece {
-        let a = mesh.outer[k];
-        let d = mesh.nodes[a][1] + u[2 * a + 1] - z_plate;
-        if d <= 0.0 {
-            return Piece::Open;
-        }
-        let Some(fr) = self.friction else {
-            return Piece::Frictionless;
-        };
-        let w = self.weights[k];
-        let trial = fr.stiffness * w * (mesh.nodes[a][0] + u[2 * a] - self.anchor(mesh, stick, k));
-        if trial.abs() <= fr.mu * (self.stiffness * d) * w {
-            Piece::Stick
-        } else {
-            Piece::Slip(trial > 0.0)
-        }
-    }
-
-    /// Outer node k's interface force on `piece` at displacements `u`, on its (r, z) rows of
-    /// the residual f_int - f_ext, and its Jacobian with respect to (u_r, u_z): the law of
-    /// that piece continued linearly beyond it (each piece is linear in u).
-    pub fn piece_law(
-        &self,
-        mesh: &ShellMesh,
-        u: &[f64],
-        z_plate: f64,
-        stick: &[f64],
-        k: usize,
-        piece: Piece,
-    ) -> ([f64; 2], [[f64; 2]; 2]) {
-        let a = mesh.outer[k];
-        let (kn, w) = (self.stiffness, self.weights[k]);
-        let p = kn * (mesh.nodes[a][1] + u[2 * a + 1] - z_plate);
-        let normal = ([0.0, p * w], [[0.0, 0.0], [0.0, kn * w]]);
-        match (piece, self.friction) {
-            (Piece::Open, _) => ([0.0; 2], [[0.0; 2]; 2]),
-            (Piece::Frictionless, _) | (_, None) => normal,
-            (Piece::Stick, Some(fr)) => {
-                let trial = fr.stiffness * w * (mesh.nodes[a][0] + u[2 * a] - self.anchor(mesh, stick, k));
-                ([trial, p * w], [[fr.stiffness * w, 0.0], [0.0, kn * w]])
-            }
-            (Piece::Slip(positive), Some(fr)) => {
-                let sign = if positive { 1.0 } else { -1.0 };
-                ([sign * (fr.mu * p * w), p * w], [[0.0, sign * fr.mu * kn * w], [0.0, kn * w]])
-            }
-        }
-    }
-
     /// Interface forces (added to `f_ext`, full dof vector), tangent entries of the residual
     /// f_int - f_ext (pushed to `triplets`, with the adhesive tangent chosen by `tangent`), the
     /// residual's derivative with respect to the plate displacement delta (added to `q`) and
@@ -228,40 +155,39 @@ impl Plate {
         for (k, &a) in mesh.outer.iter().enumerate() {
             let (r, z) = (mesh.nodes[a][0] + u[2 * a], mesh.nodes[a][1] + u[2 * a + 1]);
             s.stick[k] = r;
-            let piece = self.piece(mesh, u, z_plate, stick, k);
-            if piece == Piece::Open {
+            let d = z - z_plate;
+            if d <= 0.0 {
                 continue;
             }
-            let (value, jacobian) = self.piece_law(mesh, u, z_plate, stick, k, piece);
-            let (p, w) = (self.stiffness * (z - z_plate), self.weights[k]);
-            for (row, (v, jac)) in value.iter().zip(&jacobian).enumerate() {
-                f_ext[2 * a + row] -= v;
-                for (col, &j) in jac.iter().enumerate() {
-                    if j != 0.0 {
-                        triplets.push((2 * a + row, 2 * a + col, j));
-                    }
-                }
-                // d residual / d delta: the plate's delta enters only through d = z - z_p.
-                q[2 * a + row] += jac[1];
-            }
+            let p = self.stiffness * d;
+            let w = self.weights[k];
+            f_ext[2 * a + 1] -= p * w;
+            triplets.push((2 * a + 1, 2 * a + 1, self.stiffness * w));
+            q[2 * a + 1] += self.stiffness * w;
             s.pressure[k] = p;
             s.active[k] = true;
             s.force += p * w;
             s.area += w;
             s.radius = s.radius.max(r);
-            s.max_penetration = s.max_penetration.max(z - z_plate);
-            match piece {
-                Piece::Stick => {
-                    s.stick[k] = self.anchor(mesh, stick, k);
-                    s.shear[k] = -value[0] / w;
-                }
-                Piece::Slip(_) => {
-                    let fr = self.friction.expect("slip needs friction");
-                    s.stick[k] = r - value[0] / (fr.stiffness * w);
-                    s.shear[k] = -value[0] / w;
+            s.max_penetration = s.max_penetration.max(d);
+            if let Some(fr) = self.friction {
+                let anchor = stick.get(k).copied().unwrap_or(mesh.nodes[a][0]);
+                let trial = fr.stiffness * w * (r - anchor);
+                let limit = fr.mu * p * w;
+                if trial.abs() <= limit {
+                    f_ext[2 * a] -= trial;
+                    triplets.push((2 * a, 2 * a, fr.stiffness * w));
+                    s.stick[k] = anchor;
+                    s.shear[k] = -trial / w;
+                } else {
+                    let sign = trial.signum();
+                    f_ext[2 * a] -= sign * limit;
+                    triplets.push((2 * a, 2 * a + 1, sign * fr.mu * self.stiffness * w));
+                    q[2 * a] += sign * fr.mu * self.stiffness * w;
+                    s.stick[k] = r - sign * limit / (fr.stiffness * w);
+                    s.shear[k] = -sign * limit / w;
                     s.slipping[k] = true;
                 }
-                Piece::Open | Piece::Frictionless => {}
             }
         }
         if let Some(ad) = self.adhesion {

@@ -8,7 +8,7 @@
 //! the dimensionless F R/(E h^3), delta/R, p/E).
 
 use super::adhesion::Tangent;
-use super::contact::{ContactState, Piece, Plate};
+use super::contact::{ContactState, Plate};
 use super::system::{Model, NoTangent, Stiffness};
 
 /// One converged (or the last failed) state of the path.
@@ -120,159 +120,6 @@ fn trial_norm(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]
     norm.is_finite().then_some(norm)
 }
 
-/// The most passes of `piecewise_step`'s active-set iteration.
-const MAX_STATUS_PASSES: usize = 8;
-
-/// The most nodes whose friction piece `piecewise_step` changes (each costs a solve with the
-/// factorised tangent; a factorisation costs about as much as 30).
-const MAX_STATUS_CHANGES: usize = 24;
-
-/// The Newton step at `u` (whose evaluation is `ev`) of the shell linearised with the plate's
-/// Coulomb law kept exactly: the regularised law is linear in the displacements on each of
-/// its pieces (stick, slip either way: `contact::Piece`), and the step solves the
-/// piecewise-linear model by a primal-dual active-set iteration. Solve with the pieces at
-/// u; move every pressed node whose piece at u + du differs onto that piece (its law
-/// continued linearly from u: the tangent and the right-hand side change by the difference
-/// of the two pieces' laws, on the node's radial row); solve again, until no piece changes
-/// or `MAX_STATUS_PASSES`. A node whose slip would reverse is put in stick (its stick window
-/// lies between). Each change is a rank-one update of the tangent, solved with its one
-/// factorisation (Sherman-Morrison-Woodbury); past `MAX_STATUS_CHANGES` changed nodes the
-/// plain Newton step is taken. The contact edge (open or pressed) keeps the plain step:
-/// with adhesion its active-set iteration cycles (measured: 6 x the instructions of a
-/// frictionless gamma_c task).
-///
-/// Why: with the plain step, a damped iteration moves the stick/slip front by about a node
-/// (session 18's and 20's Newton traces), the full step overshooting the nodes whose status
-/// changes. Measured on `fem.gamma_c h_over_R=0.04 mu=1`: 5223 -> about 2000 iterations.
-fn piecewise_step(
-    model: &Model,
-    plate: &Plate,
-    delta: f64,
-    u: &[f64],
-    stick: &[f64],
-    ev: &Evaluation,
-) -> Option<Vec<f64>> {
-    active_set_step(model, plate, delta, u, stick, ev).map(|s| s.du)
-}
-
-/// `piecewise_step`'s result.
-#[cfg_attr(not(test), allow(dead_code))]
-struct ActiveSetStep {
-    du: Vec<f64>,
-    /// The pieces the step's linear model ends on (the pieces at u if it fell back to the
-    /// plain step), and whether they are the pieces at u + du.
-    pieces: Vec<Piece>,
-    settled: bool,
-}
-
-fn active_set_step(
-    model: &Model,
-    plate: &Plate,
-    delta: f64,
-    u: &[f64],
-    stick: &[f64],
-    ev: &Evaluation,
-) -> Option<ActiveSetStep> {
-    let mesh = &model.mesh;
-    let z_plate = apex_z(model) - delta;
-    let at_u: Vec<Piece> = (0..mesh.outer.len()).map(|k| plate.piece(mesh, u, z_plate, stick, k)).collect();
-    let rhs: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
-    let factor = model.factor(&ev.tangent).ok()?;
-    let du0 = factor.solve(&rhs);
-    let plain = |settled| Some(ActiveSetStep { du: du0.clone(), pieces: at_u.clone(), settled });
-    if plate.friction.is_none() {
-        return plain(true);
-    }
-    let mut pieces = at_u.clone();
-    // Per changed node (outer index), the column K^-1 e_r of its radial dof r (kept across
-    // passes).
-    let mut columns: std::collections::BTreeMap<usize, Vec<f64>> = Default::default();
-    let mut du = du0.clone();
-    for _ in 0..MAX_STATUS_PASSES {
-        let trial: Vec<f64> = u.iter().zip(&du).map(|(a, b)| a + b).collect();
-        let mut changed = false;
-        for (k, (piece, &a)) in pieces.iter_mut().zip(&mesh.outer).enumerate() {
-            let now = *piece;
-            if matches!(now, Piece::Open | Piece::Frictionless) || model.fixed[2 * a] {
-                continue;
-            }
-            let mut next = plate.piece(mesh, &trial, z_plate, stick, k);
-            if let (Piece::Slip(x), Piece::Slip(y)) = (now, next) {
-                if x != y {
-                    next = Piece::Stick;
-                }
-            }
-            if next != Piece::Open && next != now {
-                changed = true;
-                *piece = next;
-            }
-        }
-        if !changed {
-            return Some(ActiveSetStep { du, pieces, settled: true });
-        }
-        let moved: Vec<usize> = (0..pieces.len()).filter(|&k| pieces[k] != at_u[k]).collect();
-        if moved.len() > MAX_STATUS_CHANGES {
-            return plain(false);
-        }
-        // Node k's change: on its radial row r, the tangent by d (on u_r, u_z), the
-        // right-hand side by c.
-        let updates: Vec<RowUpdate> = moved
-            .iter()
-            .map(|&k| {
-                let row = 2 * mesh.outer[k];
-                let (v0, j0) = plate.piece_law(mesh, u, z_plate, stick, k, at_u[k]);
-                let (v1, j1) = plate.piece_law(mesh, u, z_plate, stick, k, pieces[k]);
-                let column = columns.entry(k).or_insert_with(|| {
-                    let mut e = vec![0.0; rhs.len()];
-                    e[row] = 1.0;
-                    factor.solve(&e)
-                });
-                RowUpdate {
-                    row,
-                    d: [j1[0][0] - j0[0][0], j1[0][1] - j0[0][1]],
-                    c: v0[0] - v1[0],
-                    column: column.clone(),
-                }
-            })
-            .collect();
-        match solve_updated(&du0, &updates) {
-            Some(x) => du = x,
-            None => return plain(false),
-        }
-    }
-    Some(ActiveSetStep { du, pieces, settled: false })
-}
-
-/// A change of one row `row` of K x = b: K's row by d on columns (row, row + 1), b's entry by
-/// c; `column` is K^-1 e_row.
-struct RowUpdate {
-    row: usize,
-    d: [f64; 2],
-    c: f64,
-    column: Vec<f64>,
-}
-
-/// The solution of the changed system (K + E D^T) x = b + E c, given x0 = K^-1 b
-/// (Sherman-Morrison-Woodbury with Z = K^-1 E): y = x0 + Z c, x = y - Z (I + D^T Z)^-1 D^T y.
-/// None if the capacitance matrix I + D^T Z is singular (the changed K is).
-fn solve_updated(x0: &[f64], updates: &[RowUpdate]) -> Option<Vec<f64>> {
-    let m = updates.len();
-    let mut y = x0.to_vec();
-    for up in updates {
-        y.iter_mut().zip(&up.column).for_each(|(yi, zi)| *yi += up.c * zi);
-    }
-    let dot = |up: &RowUpdate, v: &[f64]| up.d[0] * v[up.row] + up.d[1] * v[up.row + 1];
-    let capacitance =
-        faer::Mat::<f64>::from_fn(m, m, |j, l| f64::from(u8::from(j == l)) + dot(&updates[j], &updates[l].column));
-    let dty = faer::Mat::<f64>::from_fn(m, 1, |j, _| dot(&updates[j], &y));
-    let w = faer::linalg::solvers::Solve::solve(&capacitance.partial_piv_lu(), &dty);
-    for (l, up) in updates.iter().enumerate() {
-        let wl = w[(l, 0)];
-        y.iter_mut().zip(&up.column).for_each(|(yi, zi)| *yi -= wl * zi);
-    }
-    y.iter().all(|v| v.is_finite()).then_some(y)
-}
-
 /// Newton at plate displacement `delta` from displacements `u0`, with the friction anchors
 /// `stick` of the last converged state (`ContactState::stick`; empty: the reference state).
 pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], stick: &[f64], opt: Options) -> Step {
@@ -305,8 +152,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
         iterations += 1;
         let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
-        let mut next =
-            piecewise_step(model, plate, delta, &u, stick, &cur).and_then(|du| line_search(&u, cur.norm, &du));
+        let mut next = model.solve(&cur.tangent, &rhs).ok().and_then(|du| line_search(&u, cur.norm, &du));
         if next.is_none() && plate.adhesion.is_some() {
             // Every step along the exact direction inverts elements: strong adhesion makes
             // the tangent indefinite where the law softens. Take the direction of the
@@ -575,49 +421,6 @@ mod tests {
         assert!((plate_ratio - 1.0).abs() < 0.08 && (mid_ratio - 1.0).abs() < 0.08, "{plate_ratio} {mid_ratio}");
         assert!(plate_ratio < mid_ratio);
         assert!(last.contact.max_penetration < 2e-4 * last.delta);
-    }
-
-    #[test]
-    fn the_active_set_step_solves_the_piecewise_linear_model() {
-        // A frictional shell one load step past a converged state: the step's pieces differ
-        // from those at u (the stick/slip front moves). Its Woodbury solution is the direct
-        // solution of the changed tangent and right-hand side, and, settled, it lands every
-        // pressed node on the piece its linear model assumed.
-        let (e, nu, r, h) = (1.3, 0.45, 15.0, 1.0);
-        let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, nu, Base::Clamped);
-        let plate = Plate::new(&model.mesh, e, 1000.0).with_friction(0.5);
-        let from = load_path(&model, &plate, e, 0.1 * r, 4, 6).pop().unwrap();
-        assert!(from.converged);
-        let (delta, stick) = (from.delta + 0.002 * r, &from.contact.stick);
-        let ev = evaluate(&model, &plate, delta, &from.u, stick).unwrap();
-        let step = active_set_step(&model, &plate, delta, &from.u, stick, &ev).unwrap();
-        let mesh = &model.mesh;
-        let z_plate = apex_z(&model) - delta;
-        let at_u: Vec<Piece> = (0..mesh.outer.len()).map(|k| plate.piece(mesh, &from.u, z_plate, stick, k)).collect();
-        let moved: Vec<usize> = (0..at_u.len()).filter(|&k| step.pieces[k] != at_u[k]).collect();
-        assert!(moved.len() >= 2 && step.settled, "{} moved, settled {}", moved.len(), step.settled);
-        let mut tangent = ev.tangent.clone();
-        let mut rhs: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
-        for &k in &moved {
-            let (v0, j0) = plate.piece_law(mesh, &from.u, z_plate, stick, k, at_u[k]);
-            let (v1, j1) = plate.piece_law(mesh, &from.u, z_plate, stick, k, step.pieces[k]);
-            let row = 2 * mesh.outer[k];
-            rhs[row] -= v1[0] - v0[0];
-            for col in 0..2 {
-                crate::fem::system::TangentSink::push(&mut tangent, (row, row + col, j1[0][col] - j0[0][col]));
-            }
-        }
-        let direct = model.solve(&tangent, &rhs).unwrap();
-        let scale = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let gap = direct.iter().zip(&step.du).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(gap < 1e-9 * scale, "{gap} vs {scale}");
-        let landed: Vec<f64> = from.u.iter().zip(&step.du).map(|(a, b)| a + b).collect();
-        for k in 0..at_u.len() {
-            let there = plate.piece(mesh, &landed, z_plate, stick, k);
-            if !matches!(there, Piece::Open) && !matches!(step.pieces[k], Piece::Open) {
-                assert_eq!(there, step.pieces[k], "node {k}");
-            }
-        }
     }
 
     #[test]

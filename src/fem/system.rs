@@ -68,30 +68,6 @@ pub struct Model {
     last: std::sync::Mutex<Option<Assembly>>,
 }
 
-/// A factorised tangent (`Model::factor`), solving on the full dof numbering.
-pub struct Factorization<'a> {
-    model: &'a Model,
-    factor: Factor,
-}
-
-enum Factor {
-    Cholesky(BandCholesky),
-    Lu(BandLu),
-}
-
-impl Factorization<'_> {
-    /// x with K x = b on the free dofs, zero on the fixed ones (b full numbering; its
-    /// entries on fixed dofs are ignored).
-    pub fn solve(&self, b: &[f64]) -> Vec<f64> {
-        let mut x = self.model.to_free(&[b]).pop().expect("one vector");
-        match &self.factor {
-            Factor::Cholesky(llt) => llt.solve_in_place(&mut x),
-            Factor::Lu(lu) => lu.solve_in_place(&mut x),
-        }
-        self.model.full_vectors(&[x]).pop().expect("one vector")
-    }
-}
-
 /// Displacements with their internal forces and tangent.
 type Assembly = (Vec<f64>, Vec<f64>, Stiffness);
 
@@ -402,20 +378,19 @@ impl Model {
         Ok(self.solve_many(k, &[rhs])?.remove(0))
     }
 
-    /// Solves K x = b for several right-hand sides with one factorisation (`factor`).
+    /// Solves K x = b for several right-hand sides with one factorisation: Cholesky when K
+    /// is symmetric and positive definite (the stable branches without slip), else LU with
+    /// partial pivoting.
     pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
-        let f = self.factor(k)?;
-        Ok(rhs.iter().map(|b| f.solve(b)).collect())
-    }
-
-    /// The factorisation of K's free block: Cholesky when K is symmetric and positive
-    /// definite (the stable branches without slip), else LU with partial pivoting.
-    pub fn factor(&self, k: &Stiffness) -> Result<Factorization<'_>> {
-        let factor = match self.definite(k) {
-            Some(llt) => Factor::Cholesky(llt),
-            None => Factor::Lu(self.factorize(k)?),
-        };
-        Ok(Factorization { model: self, factor })
+        let mut b = self.to_free(rhs);
+        match self.definite(k) {
+            Some(llt) => b.iter_mut().for_each(|x| llt.solve_in_place(x)),
+            None => {
+                let lu = self.factorize(k)?;
+                b.iter_mut().for_each(|x| lu.solve_in_place(x));
+            }
+        }
+        Ok(self.full_vectors(&b))
     }
 
     /// The free dofs of full-numbering vectors.
