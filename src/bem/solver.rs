@@ -488,11 +488,30 @@ impl ActiveLu {
         x
     }
 
-    /// As a preconditioner of the Jacobian on the mesh with twice the elements (nested:
-    /// fine elements 2i and 2i + 1 halve coarse element i): the pair means of b are solved
-    /// on this (coarse) mesh and prolonged by injection; the pair differences, which the
-    /// smoothing influence operator G hardly sees (J = I - G D acts on them about as the
-    /// identity), are kept as they are.
+    /// As a preconditioner of the Jacobian on a mesh with `r` = 2, 4, ... times the
+    /// elements (nested: fine elements r i .. r i + r - 1 divide coarse element i): the
+    /// group means of b are solved on this (coarse) mesh and prolonged by injection; the
+    /// deviations from the group means, which the smoothing influence operator G hardly sees
+    /// (J = I - G D acts on them about as the identity), are kept as they are.
+    fn solve_nested(&self, b: &[f64]) -> Vec<f64> {
+        let nc = self.n;
+        let r = (b.len() - 1) / nc;
+        if r == 2 {
+            return self.solve_two_grid(b);
+        }
+        let inv = 1.0 / r as f64;
+        let mut coarse: Vec<f64> = b[..r * nc].chunks_exact(r).map(|g| g.iter().sum::<f64>() * inv).collect();
+        coarse.push(b[r * nc]);
+        let xc = self.solve(&coarse);
+        let mut x = Vec::with_capacity(r * nc + 1);
+        for (i, g) in b[..r * nc].chunks_exact(r).enumerate() {
+            x.extend(g.iter().map(|&bi| xc[i] + (bi - coarse[i])));
+        }
+        x.push(xc[nc]);
+        x
+    }
+
+    /// `solve_nested` for r = 2, with the pair differences formed directly.
     fn solve_two_grid(&self, b: &[f64]) -> Vec<f64> {
         let nc = self.n;
         let mut coarse: Vec<f64> = (0..nc).map(|i| 0.5 * (b[2 * i] + b[2 * i + 1])).collect();
@@ -525,6 +544,27 @@ struct Preconditioner {
 /// n = 18528, the same mu* to 9 digits).
 const TWO_GRID_MIN_N: usize = 2000;
 
+/// The largest ratio of fine to coarse elements at which a coarse LU is used as a nested
+/// preconditioner (`ActiveLu::solve_nested`): `solve_to_tolerance` carries the LU of its
+/// first refinement through the next ones instead of factoring each coarse level anew,
+/// whose cost grows as the cube of its active nodes. Measured (release, lambda = 2, W =
+/// 0.5, k = 0.001, V0 = 4.64e-4, refined 1920 -> 3840 -> 7680 -> 15360): 3.2 s -> 0.19 s,
+/// the LU at n = 7680 (m = 3760 active nodes) alone had taken 2.1-2.6 s; GMRES takes 1-4
+/// iterations at r = 2 and 4, 2-5 at r = 8; the same mu* to every digit printed. The
+/// Chapter 4-5 stages of `thesis.yaml` (session 21, with `LAMBDA_STEP_STALL`): 1917 G ->
+/// 1289 G instructions, the rolling stages 3-5 times faster (rolling_vs_load 54 -> 11 s
+/// of task time), every table equal to the printed digits; no nested solve with r > 2
+/// failed there (one that fails falls back, as at r = 2, to a fresh LU of the fine mesh).
+const MAX_NESTED_RATIO: usize = 8;
+
+/// r = fine / coarse when the fine mesh nests r = 2, 4, ... `MAX_NESTED_RATIO` elements in
+/// each coarse one.
+fn nested_ratio(coarse: usize, fine: usize) -> Option<usize> {
+    (fine > coarse && fine.is_multiple_of(coarse))
+        .then(|| fine / coarse)
+        .filter(|r| r.is_power_of_two() && *r <= MAX_NESTED_RATIO)
+}
+
 const GMRES_ITERATIONS: usize = 30;
 
 fn lu_solve(lu: &PartialPivLu<f64>, v: &[f64]) -> Vec<f64> {
@@ -538,8 +578,8 @@ impl Preconditioner {
     fn newton_step(&mut self, sys: &System, dp: &[f64], rhs: &[f64], tol: f64) -> Vec<f64> {
         let apply = |v: &[f64]| sys.apply_jacobian(dp, v);
         let n = sys.op.mesh.n;
-        if let Some(coarse) = self.active.as_ref().filter(|a| 2 * a.n == n && n >= TWO_GRID_MIN_N) {
-            let g = gmres(apply, |v| coarse.solve_two_grid(v), rhs, tol, GMRES_ITERATIONS);
+        if let Some(coarse) = self.active.as_ref().filter(|a| nested_ratio(a.n, n).is_some() && n >= TWO_GRID_MIN_N) {
+            let g = gmres(apply, |v| coarse.solve_nested(v), rhs, tol, GMRES_ITERATIONS);
             if g.converged {
                 return g.x;
             }
@@ -578,6 +618,33 @@ fn newton(
     max_iter: usize,
     pre: &mut Preconditioner,
 ) -> Solution {
+    newton_limited(op, params, control, h0, delta0, Limits { iterations: max_iter, stall: usize::MAX }, pre)
+}
+
+/// Iteration limits of one Newton solve.
+#[derive(Clone, Copy, Debug)]
+struct Limits {
+    /// Newton iterations at most.
+    iterations: usize,
+    /// Give up after this many consecutive iterations whose line search cut the step to
+    /// `STALL_STEP` or less (`LAMBDA_STEP_STALL`; `usize::MAX`: never).
+    stall: usize,
+}
+
+/// A line-search step this short counts towards `Limits::stall`.
+const STALL_STEP: f64 = 1.0 / 16.0;
+
+fn newton_limited(
+    op: &Operator,
+    params: &Params,
+    control: Control,
+    h0: Vec<f64>,
+    delta0: f64,
+    limits: Limits,
+    pre: &mut Preconditioner,
+) -> Solution {
+    let max_iter = limits.iterations;
+    let mut stalled = 0;
     let tol = TOLERANCE;
     let n = op.mesh.n;
     let lambda = op.lambda;
@@ -617,6 +684,10 @@ fn newton(
             step *= 0.5;
         }
         if !accepted {
+            break;
+        }
+        stalled = if step <= STALL_STEP { stalled + 1 } else { 0 };
+        if stalled >= limits.stall {
             break;
         }
     }
@@ -838,6 +909,19 @@ fn interpolated_newton(coarse: &Solution, mesh: Mesh, max_iter: usize, pre: &mut
 /// 73 s with 15 or 10, the same mu* to the 6 digits printed; the lambda = 16 maximum 266 -> 248 s.
 const LAMBDA_STEP_ITERATIONS: usize = 15;
 
+/// A step of the lambda continuation also counts as failed (and is retried with a smaller
+/// factor) after this many consecutive Newton iterations whose line search cut the step to
+/// `STALL_STEP` or less. At large lambda a failing step does not diverge: it crawls, the
+/// residual falling by about 1 % per iteration at steps of 1/64-1/128, to the iteration
+/// limit (the crack front would have to jump an element, lattice trapping); converging
+/// steps are damped at most once or twice in a row before their steps grow again.
+/// Measured (release, W = 0.1, k = 0.1, the same mu* to every digit printed): lambda = 24,
+/// V0 = 2.7 2475 -> 1838 Newton iterations, 68 -> 36 s; V0 = 2.2 2784 -> 2088, 69 -> 45 s;
+/// the lambda = 16 maximum 61 -> 40 s. The Chapter 4-5 stages of `thesis.yaml` run side by
+/// side, one core each (session 21): 2080 G -> 1917 G instructions, 540 -> 464 s of task
+/// time, every table equal to the digits `repro show` prints.
+const LAMBDA_STEP_STALL: usize = 2;
+
 fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Preconditioner) -> Solution {
     let lam0 = params.lambda.min(LAMBDA_START);
     let at = |lambda: f64, v: f64| Params { lambda, ..params.clone() }.with_v(v);
@@ -890,13 +974,13 @@ fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Pr
                     let factor = if i == 0 { 1.5 } else { 1.1 };
                     let (s, it) = continue_geometric(from, cap, factor, sol, |lambda, h, delta| {
                         let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
-                        newton(
+                        newton_limited(
                             &op,
                             &at(lambda, v),
                             Control::Load(params.w),
                             h.to_vec(),
                             delta,
-                            LAMBDA_STEP_ITERATIONS,
+                            Limits { iterations: LAMBDA_STEP_ITERATIONS, stall: LAMBDA_STEP_STALL },
                             pre,
                         )
                     });
@@ -985,19 +1069,32 @@ fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
 /// interpolation of `coarse` (mesh sequencing: the continuation path is walked on the
 /// coarse mesh only); if that fails, by the full continuation on the fine mesh.
 pub fn refine(coarse: &Solution, mesh: Mesh) -> Solution {
+    refine_carrying(coarse, mesh, &mut None)
+}
+
+/// `refine`, with the active LU of an earlier refinement of the same domain (`carried`)
+/// used as the nested preconditioner (`ActiveLu::solve_nested`) when the new mesh nests
+/// in its mesh at most `MAX_NESTED_RATIO` to one, instead of a fresh LU of `coarse`; on
+/// return `carried` holds the LU to carry to the next refinement.
+fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Option<ActiveLu>) -> Solution {
     let mut pre = Preconditioner::default();
     if mesh.n >= TWO_GRID_MIN_N && mesh.n == 2 * coarse.mesh.n && mesh.half_length == coarse.mesh.half_length {
-        let p = &coarse.params;
-        let op = Operator::new(coarse.mesh, p.lambda, p.k, &p.spectrum, p.v());
-        let sys = System::new(&op, Control::Load(p.w));
-        let ev = sys.eval(&coarse.h, coarse.delta);
-        pre.active = Some(ActiveLu::new(&sys, &ev.dp, DROP));
-        pre.factorizations += 1;
+        pre.active = carried.take().filter(|a| nested_ratio(a.n, mesh.n).is_some());
+        if pre.active.is_none() {
+            let p = &coarse.params;
+            let op = Operator::new(coarse.mesh, p.lambda, p.k, &p.spectrum, p.v());
+            let sys = System::new(&op, Control::Load(p.w));
+            let ev = sys.eval(&coarse.h, coarse.delta);
+            pre.active = Some(ActiveLu::new(&sys, &ev.dp, DROP));
+            pre.factorizations += 1;
+        }
     }
     let s = interpolated_newton(coarse, mesh, 40, &mut pre);
     if s.converged {
+        *carried = pre.active;
         s
     } else {
+        *carried = None;
         let mut full = solve(&coarse.params, mesh);
         full.iterations += s.iterations;
         full.factorizations += s.factorizations;
@@ -1036,8 +1133,14 @@ pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usiz
 pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, ErrorShares) {
     let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
+    let mut carried = None;
     let mut next = |from: &Solution, n: usize| {
-        let mut s = if from.converged { refine(from, Mesh { n, ..mesh }) } else { solve(params, Mesh { n, ..mesh }) };
+        let mut s = if from.converged {
+            refine_carrying(from, Mesh { n, ..mesh }, &mut carried)
+        } else {
+            carried = None;
+            solve(params, Mesh { n, ..mesh })
+        };
         iterations += s.iterations;
         factorizations += s.factorizations;
         s.iterations = iterations;
@@ -1201,5 +1304,30 @@ mod tests {
         let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
         assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
         assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
+    }
+
+    #[test]
+    fn a_carried_lu_preconditions_refinements_four_and_eight_times_finer() {
+        // One LU of the 1000-element Jacobian serves the refinements to 2000, 4000 and 8000
+        // elements (nested ratios 2, 4, 8), with no further factorisation, and each lands
+        // on the equilibrium that a refinement with a fresh LU of its coarse mesh finds.
+        let params = Params::sls(1.0, 0.1, 0.1, 0.3);
+        let mut s = solve(&params, Mesh { n: 1000, half_length: 6.0 });
+        assert!(s.converged);
+        let mut carried = None;
+        for (n, lus) in [(2000, 1), (4000, 0), (8000, 0)] {
+            let prev = s.clone();
+            s = refine_carrying(&prev, Mesh { n, ..prev.mesh }, &mut carried);
+            assert!(s.converged && s.factorizations == lus, "n = {n}: {} LU", s.factorizations);
+            assert_eq!(carried.as_ref().map(|a| a.n), Some(1000));
+            let fresh = refine(&prev, s.mesh);
+            assert!(fresh.converged && fresh.factorizations == 1);
+            let (a, b) = (s.friction().mu_star, fresh.friction().mu_star);
+            assert!((a - b).abs() < 1e-9 * a.abs(), "n = {n}: {a} vs {b}");
+        }
+        // Sixteen times finer is beyond MAX_NESTED_RATIO: the coarse level would be factored.
+        assert_eq!(nested_ratio(1000, 16000), None);
+        assert_eq!(nested_ratio(1000, 3000), None);
+        assert_eq!(nested_ratio(1000, 8000), Some(8));
     }
 }
