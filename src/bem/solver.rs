@@ -20,7 +20,7 @@
 //! with U at the element edges from the same kernel. mu_adh and mu_comp are the parts
 //! from tensile and compressive elements.
 
-use super::kernel;
+use super::kernel::MeshKernel;
 use super::traction::{self, ALPHA};
 use crate::numerics::gmres::gmres;
 use crate::numerics::toeplitz::Toeplitz;
@@ -295,14 +295,17 @@ struct Operator {
 
 impl Operator {
     fn new(mesh: Mesh, lambda: f64, k: f64, spectrum: &Spectrum, v: f64) -> Operator {
+        Operator::scaled(mesh, &MeshKernel::new(mesh.n, mesh.a(), v, k, spectrum), lambda)
+    }
+
+    /// The operator at `lambda` from the kernel of its mesh and speed (which lambda only
+    /// scales: a lambda continuation builds the kernel once).
+    fn scaled(mesh: Mesh, kern: &MeshKernel, lambda: f64) -> Operator {
         let n = mesh.n;
-        let a = mesh.a();
         let s = 2.0 * lambda / PI;
-        let nodes: Vec<f64> = kernel::toeplitz_coefficients(n, a, v, k, spectrum).into_iter().map(|c| c * s).collect();
+        let nodes: Vec<f64> = kern.nodes.iter().map(|c| c * s).collect();
         // Edge e sits at X_0 - A + 2A e; offset from element m: 2A (e - m) - A.
-        let edges: Vec<f64> = (0..2 * n)
-            .map(|idx| s * kernel::strip_spectrum(2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a, a, v, k, spectrum))
-            .collect();
+        let edges: Vec<f64> = kern.edges.iter().map(|c| c * s).collect();
         let nodes_fft = Toeplitz::new(&nodes, n, n);
         let edges_fft = Toeplitz::new(&edges, n, n + 1);
         Operator { mesh, lambda, nodes, nodes_fft, edges_fft }
@@ -972,8 +975,9 @@ fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Pr
                 if cap > from {
                     // Finer levels carry the stiff, large-lambda part of the path: smaller steps.
                     let factor = if i == 0 { 1.5 } else { 1.1 };
+                    let kern = MeshKernel::new(mesh.n, mesh.a(), v, params.k, &params.spectrum);
                     let (s, it) = continue_geometric(from, cap, factor, sol, |lambda, h, delta| {
-                        let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
+                        let op = Operator::scaled(mesh, &kern, lambda);
                         newton_limited(
                             &op,
                             &at(lambda, v),
