@@ -70,7 +70,7 @@ fn pull_off_tends_to_the_jkr_line_contact_as_lambda_grows() {
     let (w1, w3) = (pull_off_at(1.0, 0.1, 1e-6, None), pull_off_at(3.0, 0.1, 1e-6, None));
     assert!((w3 / jkr - 1.0).abs() < 0.015, "lambda 3: {w3} vs JKR {jkr}");
     assert!((w3 - jkr).abs() < 0.25 * (w1 - jkr).abs(), "lambda 1: {w1}, lambda 3: {w3}");
-    let md3 = maugis_dugdale_line_pull_off(3.0).unwrap().0;
+    let md3 = maugis_dugdale_line_pull_off(3.0).unwrap().load;
     assert!((w3 / md3 - 1.0).abs() < 0.01, "{w3} vs Maugis-Dugdale {md3}");
     // Converged in the mesh: n = 579 (default), 1158 give -1.72745, -1.72712.
     let fine = pull_off_at(3.0, 0.1, 1e-6, Some(1158));
@@ -102,7 +102,7 @@ fn pull_off_at_small_lambda_is_the_rigid_line_contact() {
     let (r01, r001) = (ratio(0.1), ratio(0.01));
     assert!(r01 < 1.0 && (r01 - 0.983).abs() < 0.005, "lambda 0.1: {r01}");
     assert!((r001 - 1.0).abs() < 0.003, "lambda 0.01: {r001}");
-    let md = maugis_dugdale_line_pull_off(0.1).unwrap().0;
+    let md = maugis_dugdale_line_pull_off(0.1).unwrap().load;
     let shape = kappa / (2.0 * 2f64.sqrt());
     let bem = pull_off_at(0.1, 0.1, 1e-6, None);
     assert!((bem / md / shape - 1.0).abs() < 0.01, "{bem} vs Maugis-Dugdale {md} x {shape}");

@@ -58,7 +58,7 @@ pub struct MaugisDugdale;
 
 impl Kind for MaugisDugdale {
     const NAME: &'static str = "theory.maugis_dugdale";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
@@ -72,22 +72,23 @@ impl Kind for MaugisDugdale {
     }
 
     fn run(p: &MaugisParams, _: &Inputs) -> Result<Output> {
-        let mut cols: [Vec<f64>; 4] = Default::default();
+        let mut cols: [Vec<f64>; 5] = Default::default();
         for a in radii(p.A_min, p.A_max, p.n) {
             let Some(pt) = classical::maugis_dugdale(a, p.lambda) else {
                 bail!("no Maugis-Dugdale solution at A = {a}, lambda = {}", p.lambda)
             };
-            for (c, v) in cols.iter_mut().zip([a, pt.load, pt.approach, pt.m]) {
+            for (c, v) in cols.iter_mut().zip([a, pt.load, pt.approach, pt.m, finite(pt.load_error)]) {
                 c.push(v);
             }
         }
-        let [a, load, approach, m] = cols;
+        let [a, load, approach, m, error] = cols;
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda; a.len()])
             .with_f64("A_bar", a)
             .with_f64("P_bar", load)
             .with_f64("approach_bar", approach)
             .with_f64("m", m)
+            .with_f64("error_estimate", error)
             .into())
     }
 }
@@ -112,7 +113,7 @@ pub struct MaugisPullOff;
 
 impl Kind for MaugisPullOff {
     const NAME: &'static str = "theory.maugis_pulloff";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str = "Maugis-Dugdale pull-off load (minimum of P_bar over A_bar); JKR -3/2, DMT -2";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
     type Params = PullOffParams;
@@ -122,13 +123,14 @@ impl Kind for MaugisPullOff {
     }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
-        let Some((load, a)) = classical::maugis_pull_off(p.lambda) else {
+        let Some(po) = classical::maugis_pull_off(p.lambda) else {
             bail!("no pull-off found for lambda = {}", p.lambda)
         };
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda])
-            .with_f64("P_bar_pulloff", vec![load])
-            .with_f64("A_bar_pulloff", vec![a])
+            .with_f64("P_bar_pulloff", vec![po.load])
+            .with_f64("A_bar_pulloff", vec![po.radius])
+            .with_f64("error_estimate", vec![finite(po.error)])
             .with_f64("P_bar_jkr", vec![classical::JKR_PULL_OFF])
             .with_f64("P_bar_dmt", vec![classical::DMT_PULL_OFF])
             .into())
@@ -141,7 +143,7 @@ pub struct LinePullOff;
 
 impl Kind for LinePullOff {
     const NAME: &'static str = "theory.line_pulloff";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str =
         "2D line-contact pull-off W: Maugis-Dugdale, JKR -3(pi/16)^(1/3), rigid Lennard-Jones -2.434 sqrt(lambda)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
@@ -152,13 +154,14 @@ impl Kind for LinePullOff {
     }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
-        let Some((load, a)) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
+        let Some(po) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
             bail!("no line-contact pull-off found for lambda = {}", p.lambda)
         };
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda])
-            .with_f64("W_md", vec![load])
-            .with_f64("A_md", vec![a])
+            .with_f64("W_md", vec![po.load])
+            .with_f64("A_md", vec![po.radius])
+            .with_f64("error_estimate", vec![finite(po.error)])
             .with_f64("W_jkr", vec![crate::bem::solver::jkr_pull_off()])
             .with_f64("W_rigid_lj", vec![-line_contact::lj_rigid_pull_off_coefficient() * p.lambda.sqrt()])
             .into())
@@ -387,7 +390,7 @@ pub struct PerssonBrener;
 
 impl Kind for PerssonBrener {
     const NAME: &'static str = "theory.persson_brener";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
     const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
     type Params = PbParams;
@@ -404,11 +407,13 @@ impl Kind for PerssonBrener {
         let m = p.material();
         let spectrum = m.spectrum();
         let g = persson_brener::g_trailing_spectrum(p.V_PB, p.k, &spectrum);
+        let (f, f_error) = persson_brener::friction_spectrum_bounded(p.V_PB, p.k, &spectrum);
         let t = Table::new()
             .with_f64("k", vec![p.k])
             .with_f64("V_PB", vec![p.V_PB])
             .with_f64("G_trail_over_dgamma", vec![g])
-            .with_f64("F_T_PB", vec![persson_brener::friction_spectrum(p.V_PB, p.k, &spectrum)]);
+            .with_f64("F_T_PB", vec![f])
+            .with_f64("error_estimate", vec![finite(f_error)]);
         let t = match p.s {
             _ if m.is_sls() => t,
             Some(s) => t
@@ -419,6 +424,12 @@ impl Kind for PerssonBrener {
         };
         Ok(t.into())
     }
+}
+
+/// An error bound as a table value: an infinite bound (a root where the residual is flat
+/// to rounding) is published as f64::MAX, never as infinity.
+fn finite(e: f64) -> f64 {
+    e.min(f64::MAX)
 }
 
 pub fn register(r: &mut Registry) {

@@ -11,6 +11,8 @@
 //! The thesis prints Eqs. 2.10, 2.11 and 2.13 with wrong factors (ERRATA 18); the tests
 //! of this module check the corrected forms against the pull-off values it also prints.
 
+use crate::numerics::roots::{bisect_root, maximize, rounding_of};
+
 /// Hertz load for contact radius A.
 pub fn hertz_load(a: f64) -> f64 {
     a.powi(3)
@@ -97,6 +99,9 @@ pub struct MaugisPoint {
     pub load: f64,
     /// Approach D.
     pub approach: f64,
+    /// A bound on the error of `load`: the root's bound (`roots::Root`) carried through
+    /// the load formula, plus the formula's own rounding.
+    pub load_error: f64,
 }
 
 /// The Maugis–Dugdale solution at contact radius A for transition parameter lambda:
@@ -107,25 +112,60 @@ pub struct MaugisPoint {
 ///      D = A^2 - (4/3) A lambda sqrt(m^2-1).
 /// The unknown is t = sqrt(m^2 - 1), found by bisection in log t.
 pub fn maugis_dugdale(a: f64, lambda: f64) -> Option<MaugisPoint> {
+    maugis_dugdale_to(a, lambda, 1e-14)
+}
+
+/// `maugis_dugdale` with the bisection stopped at a bracket of `tol` in log t.
+fn maugis_dugdale_to(a: f64, lambda: f64, tol: f64) -> Option<MaugisPoint> {
     if !(a > 0.0 && lambda > 0.0) {
         return None;
     }
-    let energy = |t: f64| 0.5 * lambda * a * a * g1(t) + (4.0 / 3.0) * lambda * lambda * a * g2(t) - 1.0;
-    let lt = super::super::numerics::roots::bisect(|u: f64| energy(u.exp()), -60.0, 60.0, 1e-14)?;
-    let t = lt.exp();
+    let terms = |t: f64| [0.5 * lambda * a * a * g1(t), (4.0 / 3.0) * lambda * lambda * a * g2(t), -1.0];
+    let energy = |u: f64| terms(u.exp()).iter().sum::<f64>();
+    let noise = |u: f64| rounding_of(&terms(u.exp()));
+    let root = bisect_root(energy, noise, -60.0, 60.0, tol)?;
+    let load_terms = |u: f64| {
+        let t = u.exp();
+        [a.powi(3), -lambda * a * a * (t + (1.0 + t * t) * t.atan())]
+    };
+    let t = root.x.exp();
     let m = (1.0 + t * t).sqrt();
     let load = a.powi(3) - lambda * a * a * (t + m * m * t.atan());
     let approach = a * a - (4.0 / 3.0) * a * lambda * t;
-    Some(MaugisPoint { a, m, load, approach })
+    let load_error = root.propagate(|u| load_terms(u).iter().sum()) + rounding_of(&load_terms(root.x));
+    Some(MaugisPoint { a, m, load, approach, load_error })
 }
 
-/// The pull-off load under load control: the minimum of P over the contact radius A, and
-/// the radius where it is reached.
-pub fn maugis_pull_off(lambda: f64) -> Option<(f64, f64)> {
-    let load = |la: f64| maugis_dugdale(la.exp(), lambda).map_or(f64::INFINITY, |p| p.load);
-    // Minimise P over log A on [1e-4, 10].
-    let (la, neg) = crate::numerics::roots::maximize(|la| -load(la), (1e-4f64).ln(), 10f64.ln(), 200, 1e-10);
-    (neg.is_finite()).then(|| (-neg, la.exp()))
+/// A pull-off: the least load of a load-radius curve and the radius where it is reached.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PullOff {
+    pub load: f64,
+    pub radius: f64,
+    /// A bound on the error of `load`: the point's own error at the minimum plus the
+    /// change of the load across the minimisation's last bracket.
+    pub error: f64,
+}
+
+/// The minimum of a load curve P(log A) over [log a_min, log a_max] (`n_grid` samples, then
+/// golden section to 1e-10 in log A); `point` gives (P, its error bound) or None.
+pub fn least_load<F: Fn(f64) -> Option<(f64, f64)>>(
+    point: F,
+    a_min: f64,
+    a_max: f64,
+    n_grid: usize,
+) -> Option<PullOff> {
+    const TOL: f64 = 1e-10;
+    let load = |la: f64| point(la).map_or(f64::INFINITY, |p| p.0);
+    let (la, neg) = maximize(|la| -load(la), a_min.ln(), a_max.ln(), n_grid, TOL);
+    let (p, e) = point(la)?;
+    let across = (load(la + TOL) - p).abs().max((load(la - TOL) - p).abs());
+    (neg.is_finite() && across.is_finite()).then(|| PullOff { load: p, radius: la.exp(), error: e + across })
+}
+
+/// The pull-off load under load control: the minimum of P over the contact radius A
+/// (A in [1e-4, 10]), and the radius where it is reached.
+pub fn maugis_pull_off(lambda: f64) -> Option<PullOff> {
+    least_load(|la| maugis_dugdale(la.exp(), lambda).map(|p| (p.load, p.load_error)), 1e-4, 10.0, 200)
 }
 
 #[cfg(test)]
@@ -181,15 +221,38 @@ mod tests {
     }
 
     #[test]
+    fn the_maugis_error_bounds_cover_a_looser_solution_and_are_rounding_when_tight() {
+        for (a, lambda) in [(0.05, 0.01), (0.3, 0.3), (1.0, 1.0), (2.0, 5.0), (0.7, 30.0)] {
+            let tight = maugis_dugdale(a, lambda).unwrap();
+            let scale = a.powi(3) + (a.powi(3) - tight.load).abs();
+            crate::numerics::roots::assert_bound_covers(&format!("A {a}, lambda {lambda}"), scale, 1e-12, |tol| {
+                let p = maugis_dugdale_to(a, lambda, tol).unwrap();
+                (p.load, p.load_error)
+            });
+        }
+        // The pull-off's bound: rounding-sized, and it covers the distance to a minimum found
+        // on a finer grid (the golden section's bracket moved).
+        for lambda in [0.01, 0.1, 1.0, 10.0] {
+            let p = maugis_pull_off(lambda).unwrap();
+            assert!(p.error > 0.0 && p.error < 1e-11, "lambda {lambda}: {p:?}");
+            let fine =
+                least_load(|la| maugis_dugdale(la.exp(), lambda).map(|q| (q.load, q.load_error)), 1e-4, 10.0, 997)
+                    .unwrap();
+            assert!((fine.load - p.load).abs() <= p.error + fine.error, "lambda {lambda}: {fine:?} {p:?}");
+            assert!(p.radius > 1.0001e-4, "lambda {lambda}: the minimum sits on the searched range's end");
+        }
+    }
+
+    #[test]
     fn maugis_pull_off_spans_jkr_to_dmt() {
-        let (p_big, _) = maugis_pull_off(20.0).unwrap();
+        let p_big = maugis_pull_off(20.0).unwrap().load;
         assert!((p_big - JKR_PULL_OFF).abs() < 0.02, "{p_big}");
-        let (p_small, _) = maugis_pull_off(0.01).unwrap();
+        let p_small = maugis_pull_off(0.01).unwrap().load;
         assert!((p_small - DMT_PULL_OFF).abs() < 0.02, "{p_small}");
         // Monotone in between (Maugis 1992, Fig. 4), e.g. about -1.65 near lambda = 1.
         let mut last = -2.1;
         for l in [0.05, 0.3, 1.0, 3.0, 10.0] {
-            let (p, _) = maugis_pull_off(l).unwrap();
+            let p = maugis_pull_off(l).unwrap().load;
             assert!(p > last && p < -1.45, "lambda {l}: {p}");
             last = p;
         }

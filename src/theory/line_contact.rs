@@ -25,39 +25,72 @@
 
 use crate::bem::traction::{self, ALPHA};
 use crate::numerics::quad::integrate_panels;
-use crate::numerics::roots::{bisect, maximize};
+use crate::numerics::roots::{bisect_root, maximize, rounding_of};
+use crate::theory::classical::{least_load, PullOff};
 use std::f64::consts::PI;
 
-/// A Maugis-Dugdale line-contact state: half-width A, m = c/A, load W.
+/// A Maugis-Dugdale line-contact state: half-width A, m = c/A, load W and a bound on its
+/// error (the root's bound carried through the load, plus the load's rounding).
 #[derive(Clone, Copy, Debug)]
 pub struct LinePoint {
     pub a: f64,
     pub m: f64,
     pub load: f64,
+    pub load_error: f64,
 }
 
 /// The Maugis-Dugdale line contact at half-width A (see the module header).
 pub fn maugis_dugdale_line(a: f64, lambda: f64) -> Option<LinePoint> {
+    maugis_dugdale_line_to(a, lambda, 1e-14)
+}
+
+/// `maugis_dugdale_line` with the bisection stopped at a bracket of `tol` in log s.
+fn maugis_dugdale_line_to(a: f64, lambda: f64, tol: f64) -> Option<LinePoint> {
     if !(a > 0.0 && lambda > 0.0) {
         return None;
     }
-    let opening = |s: f64| {
+    let terms = |s: f64| {
         let m = (1.0 + s * s).sqrt();
         let l = (m + s).ln();
-        0.5 * lambda * a * a * (m * s - l) + 4.0 * lambda * lambda * a / PI * (s * l - m * m.ln()) - 1.0
+        [0.5 * lambda * a * a * (m * s - l), 4.0 * lambda * lambda * a / PI * (s * l - m * m.ln()), -1.0]
     };
     // The opening grows from 0 at s = 0; bisect in log s.
-    let ls = bisect(|u: f64| opening(u.exp()), -60.0, 60.0, 1e-14)?;
-    let s = ls.exp();
-    Some(LinePoint { a, m: (1.0 + s * s).sqrt(), load: PI / 4.0 * a * a - 2.0 * lambda * a * s })
+    let opening = |u: f64| terms(u.exp()).iter().sum::<f64>();
+    let root = bisect_root(opening, |u| rounding_of(&terms(u.exp())), -60.0, 60.0, tol)?;
+    let load_terms = |u: f64| [PI / 4.0 * a * a, -2.0 * lambda * a * u.exp()];
+    let s = root.x.exp();
+    let load = PI / 4.0 * a * a - 2.0 * lambda * a * s;
+    let load_error = root.propagate(|u| load_terms(u).iter().sum()) + rounding_of(&load_terms(root.x));
+    Some(LinePoint { a, m: (1.0 + s * s).sqrt(), load, load_error })
 }
 
-/// The Maugis-Dugdale line-contact pull-off (load control): (min W, A there). At small
-/// lambda the minimum is reached as A -> 0 (the rigid limit): the search floor is A = 1e-6.
-pub fn maugis_dugdale_line_pull_off(lambda: f64) -> Option<(f64, f64)> {
-    let load = |la: f64| maugis_dugdale_line(la.exp(), lambda).map_or(f64::INFINITY, |p| p.load);
-    let (la, neg) = maximize(|la| -load(la), (1e-6f64).ln(), 10f64.ln(), 300, 1e-10);
-    neg.is_finite().then(|| (-neg, la.exp()))
+/// The line-contact pull-off under load control: the least W over the half-width A, the
+/// lesser of the minimum over A in [1e-6, 10] and the limit A -> 0 (`zero_width_limit`).
+/// Below lambda ~ 0.18 the limit is the pull-off: W falls monotonically towards it as the
+/// contact closes (no compressive zone at pull-off, ERRATA 19), and the radius is 0 (measured:
+/// the limit at lambda = 0.158, an interior minimum at A = 2.3e-5 at lambda = 0.1995, whose
+/// A grows continuously from 0). Until session 22 the minimum over [1e-6, 10] was taken
+/// as it stood: at small lambda it sat on the range's end, 8e-13 above the limit.
+pub fn maugis_dugdale_line_pull_off(lambda: f64) -> Option<PullOff> {
+    let interior =
+        least_load(|la| maugis_dugdale_line(la.exp(), lambda).map(|p| (p.load, p.load_error)), 1e-6, 10.0, 300)?;
+    let limit = zero_width_limit(lambda);
+    Some(if limit < interior.load {
+        PullOff { load: limit, radius: 0.0, error: rounding_of(&[limit]) }
+    } else {
+        interior
+    })
+}
+
+/// The load of the Maugis-Dugdale line contact as its half-width A -> 0: with y = A s
+/// fixed, the opening condition tends to (lambda/2) y^2 + (4 lambda^2 ln 2 / pi) y = 1 (m s -
+/// ln(m + s) ~ s^2, s ln(m + s) - m ln m ~ s ln 2 for s -> inf) and W -> -2 lambda y. Tends
+/// to the rigid Dugdale cylinder's -2 sqrt(2 lambda) as lambda -> 0.
+pub fn zero_width_limit(lambda: f64) -> f64 {
+    let b = 4.0 * lambda * lambda * std::f64::consts::LN_2 / PI;
+    // The positive root of (lambda/2) y^2 + b y - 1, written without cancellation.
+    let y = 2.0 / (b + (b * b + 2.0 * lambda).sqrt());
+    -2.0 * lambda * y
 }
 
 /// I(d) = Int_0^inf 2 P(t^2 - d) dt for the Lennard-Jones law (lambda = 1/alpha, so that
@@ -81,7 +114,7 @@ mod tests {
     #[test]
     fn maugis_dugdale_line_contact_has_the_jkr_and_rigid_limits() {
         let jkr = -3.0 * (PI / 16.0).powf(1.0 / 3.0);
-        let (w, a) = maugis_dugdale_line_pull_off(30.0).unwrap();
+        let PullOff { load: w, radius: a, .. } = maugis_dugdale_line_pull_off(30.0).unwrap();
         assert!((w / jkr - 1.0).abs() < 1e-4, "{w} vs {jkr}");
         assert!((a / (2.0 / PI).powf(1.0 / 3.0) - 1.0).abs() < 0.02, "{a}");
         // JKR load at a given width for large lambda.
@@ -89,11 +122,52 @@ mod tests {
         let jkr_load = PI / 4.0 * 2.25 - (2.0 * PI * 1.5f64).sqrt();
         assert!((p.load - jkr_load).abs() < 2e-3, "{} vs {jkr_load}", p.load);
         // Rigid (Dugdale) limit: -2 sqrt(2 lambda) (measured -0.28267 vs -0.28284 at 0.01).
-        let (w, _) = maugis_dugdale_line_pull_off(0.01).unwrap();
+        let w = maugis_dugdale_line_pull_off(0.01).unwrap().load;
         assert!((w / (-2.0 * (0.02f64).sqrt()) - 1.0).abs() < 2e-3, "{w}");
         // The transition (values of this implementation: -0.8770 at 0.1, -1.7245 at 1).
-        assert!((maugis_dugdale_line_pull_off(0.1).unwrap().0 + 0.8770).abs() < 1e-3);
-        assert!((maugis_dugdale_line_pull_off(1.0).unwrap().0 + 1.7245).abs() < 1e-3);
+        assert!((maugis_dugdale_line_pull_off(0.1).unwrap().load + 0.8770).abs() < 1e-3);
+        assert!((maugis_dugdale_line_pull_off(1.0).unwrap().load + 1.7245).abs() < 1e-3);
+    }
+
+    #[test]
+    fn the_line_error_bounds_cover_a_looser_solution() {
+        for (a, lambda) in [(0.01, 0.01), (0.4, 0.3), (1.0, 1.0), (1.5, 100.0)] {
+            let tight = maugis_dugdale_line(a, lambda).unwrap();
+            let scale = a * a + (a * a - tight.load).abs();
+            crate::numerics::roots::assert_bound_covers(&format!("A {a}, lambda {lambda}"), scale, 1e-12, |tol| {
+                let p = maugis_dugdale_line_to(a, lambda, tol).unwrap();
+                (p.load, p.load_error)
+            });
+        }
+        for lambda in [0.01, 0.3, 3.0, 30.0] {
+            let p = maugis_dugdale_line_pull_off(lambda).unwrap();
+            assert!(p.error > 0.0 && p.error < 1e-11, "lambda {lambda}: {p:?}");
+            // Never the searched range's end: either an interior minimum or the A -> 0 limit.
+            assert!(p.radius == 0.0 || p.radius > 1.0001e-6, "lambda {lambda}: {p:?}");
+        }
+    }
+
+    #[test]
+    fn at_small_lambda_the_line_pull_off_is_the_zero_width_limit() {
+        for lambda in [0.01, 0.03, 0.1] {
+            let limit = zero_width_limit(lambda);
+            // W(A) falls monotonically towards the limit as A -> 0 and reaches it, within
+            // rounding, by A = 1e-9.
+            let w = |a: f64| maugis_dugdale_line(a, lambda).unwrap();
+            let mut last = f64::INFINITY;
+            for a in [1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
+                assert!(w(a).load < last && w(a).load > limit, "lambda {lambda}, A {a}: {:?}", w(a));
+                last = w(a).load;
+            }
+            assert!((w(1e-9).load - limit).abs() < 1e-12 + w(1e-9).load_error, "{:?} against {limit}", w(1e-9));
+            let p = maugis_dugdale_line_pull_off(lambda).unwrap();
+            assert_eq!((p.load, p.radius), (limit, 0.0));
+        }
+        // The rigid Dugdale cylinder as lambda -> 0, to first order in lambda^(3/2).
+        let l = 1e-6;
+        assert!((zero_width_limit(l) / (-2.0 * (2.0 * l).sqrt()) - 1.0).abs() < 1e-5);
+        // Large lambda: an interior minimum with a finite contact (JKR-like).
+        assert!(maugis_dugdale_line_pull_off(3.0).unwrap().radius > 0.1);
     }
 
     #[test]

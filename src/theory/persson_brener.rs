@@ -26,6 +26,7 @@
 //! retardation spectrum (a discretised S(tau)); for a broad power law, G/dgamma ~ u^n with
 //! n = (1-s)/(2-s) (Eq. 5.28; checked by the local slope in the tests).
 
+use crate::numerics::roots::{bisect_root, rounding_of, Root};
 use crate::rheology::Spectrum;
 
 /// phi(z) = sqrt(1 + z^-2) - 1/z, written without cancellation.
@@ -47,25 +48,53 @@ pub fn g_trailing(u: f64, k: f64) -> f64 {
 /// of v0): x = [1 - (1-k) Sum_j w_j phi(u t_j / x)]^-1, with b(tau) = 2 pi v tau/c = u t_j/x.
 /// One term at t = 1 is Eq. 5.12. The same bracket [1, 1/k] holds (0 <= phi <= 1).
 pub fn g_trailing_spectrum(u: f64, k: f64, spectrum: &Spectrum) -> f64 {
+    g_trailing_root(u, k, spectrum, 1e-15).map_or(1.0, |r| r.x.exp())
+}
+
+/// The root of Eq. 5.27 in log x with its bound (`roots::Root`), bisected to a bracket of
+/// `tol`; None where x = 1 exactly (u = 0 or k = 1).
+fn g_trailing_root(u: f64, k: f64, spectrum: &Spectrum, tol: f64) -> Option<Root> {
     assert!(u >= 0.0 && k > 0.0 && k <= 1.0);
     if u == 0.0 || k == 1.0 {
-        return 1.0;
+        return None;
     }
     let terms = spectrum.terms();
+    let relaxed = |x: f64| terms.iter().map(|&(w, t)| w * phi(u * t / x)).sum::<f64>();
     let g = |lx: f64| {
         let x = lx.exp();
-        let relaxed: f64 = terms.iter().map(|&(w, t)| w * phi(u * t / x)).sum();
-        x * (1.0 - (1.0 - k) * relaxed) - 1.0
+        x * (1.0 - (1.0 - k) * relaxed(x)) - 1.0
     };
-    let lx =
-        crate::numerics::roots::bisect(g, 0.0, (1.0 / k).ln(), 1e-15).expect("Eq. 5.27 brackets its root on [1, 1/k]");
-    lx.exp()
+    // Each term of the sum and the products around it round by an ulp or so.
+    let noise = |lx: f64| {
+        let x = lx.exp();
+        rounding_of(&[x, x * (1.0 - k) * relaxed(x) * (terms.len() as f64 + 2.0), 1.0])
+    };
+    Some(bisect_root(g, noise, 0.0, (1.0 / k).ln(), tol).expect("Eq. 5.27 brackets its root on [1, 1/k]"))
 }
 
 /// f_T / dgamma = x - 1/x (Eq. 5.13 normalised) for a retardation spectrum.
 pub fn friction_spectrum(u: f64, k: f64, spectrum: &Spectrum) -> f64 {
-    let x = g_trailing_spectrum(u, k, spectrum);
-    (x - 1.0) * (x + 1.0) / x
+    friction_spectrum_bounded(u, k, spectrum).0
+}
+
+/// `friction_spectrum` and a bound on its error: the root's bound carried through
+/// x - 1/x, plus that formula's rounding.
+pub fn friction_spectrum_bounded(u: f64, k: f64, spectrum: &Spectrum) -> (f64, f64) {
+    friction_bounded_to(u, k, spectrum, 1e-15)
+}
+
+fn friction_bounded_to(u: f64, k: f64, spectrum: &Spectrum, tol: f64) -> (f64, f64) {
+    let f = |lx: f64| {
+        let x = lx.exp();
+        (x - 1.0) * (x + 1.0) / x
+    };
+    match g_trailing_root(u, k, spectrum, tol) {
+        None => (0.0, 0.0),
+        Some(root) => {
+            let x = root.x.exp();
+            (f(root.x), root.propagate(f) + rounding_of(&[x, 1.0 / x]))
+        }
+    }
 }
 
 /// The exponent n = (1 - s)/(2 - s) of G/dgamma ~ v^n for a broad power-law spectrum
@@ -124,6 +153,26 @@ mod tests {
         assert!((rolling_linear(1.0, 1.0, 0.0, 1.0) - 4.0 * PI * PI).abs() < 1e-12);
         let printed = PI * (2.0 * PI).sqrt() * (1.0 / PI).powf(0.25);
         assert!((rolling_sqrt(1.0, 1.0, 1.0, 0.0, 1.0) - printed).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_friction_bound_covers_a_looser_root_and_is_rounding_when_tight() {
+        let power_law = crate::rheology::Spectrum::power_law(0.5, 1e-3, 4).unwrap();
+        for spectrum in [Spectrum::sls(), power_law] {
+            for k in [1e-4, 0.1, 0.9] {
+                for u in [1e-6, 1e-2, 1.0, 1e3, 1e9] {
+                    let f = friction_spectrum(u, k, &spectrum);
+                    assert_eq!(friction_spectrum_bounded(u, k, &spectrum).0, f);
+                    // Near saturation (k = 1e-4, u = 1e9) 1 - (1-k) phi loses four digits to
+                    // cancellation and the root is known to 3e-11 relative: the bound says so.
+                    crate::numerics::roots::assert_bound_covers(&format!("k {k}, u {u}"), 1.0 + f, 1e-10, |tol| {
+                        friction_bounded_to(u, k, &spectrum, tol)
+                    });
+                }
+            }
+        }
+        // x = 1 exactly: no friction, no error.
+        assert_eq!(friction_spectrum_bounded(0.0, 0.1, &Spectrum::sls()), (0.0, 0.0));
     }
 
     #[test]
