@@ -62,6 +62,46 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(cfg(60))]
+
+    /// The theories' error bounds (`numerics::roots::bisect_root`) over their whole
+    /// admissible range: finite, positive and small everywhere (Maugis-Dugdale for A in
+    /// [1e-4, 10] and lambda in [1e-3, 1e3]; Persson-Brener for k in [1e-4, 0.99] and u in
+    /// [1e-6, 1e12]).
+    #[test]
+    fn theory_error_bounds_are_finite_and_small(la in -4.0f64..1.0, ll in -3.0f64..3.0, lk in -4.0f64..-0.0044, lu in -6.0f64..12.0) {
+        let (a, lambda) = (10f64.powf(la), 10f64.powf(ll));
+        let m = classical::maugis_dugdale(a, lambda).unwrap();
+        let scale = a.powi(3) + (a.powi(3) - m.load).abs();
+        prop_assert!(m.load_error > 0.0 && m.load_error < 1e-10 * scale, "A {a}, lambda {lambda}: {m:?}");
+        let (k, u) = (10f64.powf(lk), 10f64.powf(lu));
+        let (f, e) = persson_brener::friction_spectrum_bounded(u, k, &repro::rheology::Spectrum::sls());
+        prop_assert!(f.is_finite() && e > 0.0 && e < 1e-9 * (1.0 + f), "k {k}, u {u}: {f} +- {e}");
+    }
+
+    /// Pull-offs (sphere and line contact) for lambda in [1e-3, 1e3]: between their DMT-like
+    /// and JKR limits, continuous in lambda (a 1 % change moves them by under 1 %), with a
+    /// finite bound, and never on the searched range's end (the line contact's A -> 0 limit
+    /// is radius 0).
+    #[test]
+    fn pull_offs_lie_between_their_limits_and_are_continuous(ll in -3.0f64..3.0) {
+        use repro::theory::line_contact::{maugis_dugdale_line_pull_off, zero_width_limit};
+        let lambda = 10f64.powf(ll);
+        let s = classical::maugis_pull_off(lambda).unwrap();
+        prop_assert!(s.load >= classical::DMT_PULL_OFF - 1e-9 && s.load <= classical::JKR_PULL_OFF + 1e-9, "{s:?}");
+        prop_assert!(s.error.is_finite() && s.error < 1e-10 && s.radius > 1.0001e-4, "{s:?}");
+        let s2 = classical::maugis_pull_off(lambda * 1.01).unwrap();
+        prop_assert!((s2.load - s.load).abs() < 1e-2 * s.load.abs(), "{s:?} {s2:?}");
+        let l = maugis_dugdale_line_pull_off(lambda).unwrap();
+        let jkr = repro::bem::solver::jkr_pull_off();
+        prop_assert!(l.load >= jkr - 1e-9 && l.load <= zero_width_limit(lambda), "{l:?} (JKR {jkr})");
+        prop_assert!(l.error.is_finite() && l.error < 1e-10 && (l.radius == 0.0 || l.radius > 1.0001e-6), "{l:?}");
+        let l2 = maugis_dugdale_line_pull_off(lambda * 1.01).unwrap();
+        prop_assert!((l2.load - l.load).abs() < 1e-2 * l.load.abs(), "{l:?} {l2:?}");
+    }
+}
+
+proptest! {
     #![proptest_config(cfg(16))]
 
     /// The BEM (Chapter 4) on a small mesh anywhere in lambda [0.05, 3], W [0.1, 5],
