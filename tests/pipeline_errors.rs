@@ -86,6 +86,16 @@ fn negative_length_is_refused() {
 }
 
 #[test]
+fn a_newton_tolerance_outside_zero_one_is_refused() {
+    let err = rejected(
+        "newton-tol",
+        "stages:\n  - name: b\n    kind: bem.sweep\n    params: {lambda: 1, W: 1, k: 0.1, V0: 1, newton_tol: 0}\n",
+    );
+    assert!(err.contains("p.yaml:4:"), "{err}");
+    assert!(err.contains("parameter `newton_tol`"), "{err}");
+}
+
+#[test]
 fn needs_naming_no_stage_is_located() {
     let err = rejected(
         "bad-needs",

@@ -43,12 +43,20 @@ pub struct BemParams {
     /// The largest mesh of the refinement (default 16000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub n_max: Option<usize>,
+    /// Newton's tolerance on the max-norm residual in units of H (default 1e-9,
+    /// `bem::solver::TOLERANCE`); for the accuracy-cost bench.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub newton_tol: Option<f64>,
 }
 }
 
 impl BemParams {
     fn physics(&self) -> Params {
-        Params { spectrum: self.material().spectrum(), ..Params::sls(self.lambda, self.W, self.k, self.V0) }
+        Params {
+            spectrum: self.material().spectrum(),
+            newton_tol: self.newton_tol.unwrap_or(solver::TOLERANCE),
+            ..Params::sls(self.lambda, self.W, self.k, self.V0)
+        }
     }
 
     fn rel_tol(&self) -> f64 {
@@ -89,6 +97,7 @@ impl BemParams {
             check::positive(&mut e, "half_length", l);
         }
         check::rel_tol(&mut e, "rel_tol", self.rel_tol);
+        check::rel_tol(&mut e, "newton_tol", self.newton_tol);
         self.material().validate(&mut e);
         e
     }
@@ -265,6 +274,7 @@ impl MaximaParams {
             half_length: self.half_length,
             rel_tol: self.rel_tol,
             n_max: self.n_max,
+            newton_tol: None,
             s: None,
             tau_ratio: None,
             per_decade: None,

@@ -314,9 +314,10 @@ fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Seri
         .collect())
 }
 
-/// Thirteen colours: black, the ten of matplotlib's tab10, navy and maroon (so that a
-/// figure of up to twelve families repeats none: the bench's FEM figure has twelve).
-const PALETTE: [RGBColor; 13] = [
+/// Sixteen colours: black, the ten of matplotlib's tab10, navy, maroon, dark green, olive
+/// and teal (so that a figure of up to fifteen families repeats none: the bench's BEM
+/// figure has fifteen, its FEM figure twelve).
+const PALETTE: [RGBColor; 16] = [
     RGBColor(0, 0, 0),
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -330,6 +331,9 @@ const PALETTE: [RGBColor; 13] = [
     RGBColor(127, 127, 127),
     RGBColor(0, 0, 128),
     RGBColor(128, 0, 0),
+    RGBColor(0, 100, 0),
+    RGBColor(128, 128, 0),
+    RGBColor(0, 128, 128),
 ];
 
 /// "10⁻³" for an integer exponent.
@@ -537,7 +541,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 9;
+    const VERSION: u32 = 10;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
