@@ -390,7 +390,7 @@ pub struct PerssonBrener;
 
 impl Kind for PerssonBrener {
     const NAME: &'static str = "theory.persson_brener";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
     const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
     type Params = PbParams;
