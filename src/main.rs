@@ -147,7 +147,11 @@ enum Command {
 }
 
 fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
-    spec::load(path, registry)
+    let p = spec::load(path, registry)?;
+    for w in &p.warnings {
+        eprintln!("{w}");
+    }
+    Ok(p)
 }
 
 fn fail(e: anyhow::Error) -> ExitCode {

@@ -123,7 +123,7 @@ fn mistakes_are_reported_with_their_place() {
         ("{adaptive: {logspace: [-3, 3, 7], y: mu_star, tol: 2}}", "6:", "`tol` must be a number in (0, 1)"),
         ("{adaptive: {logspace: [-3, 3, 7], tol: 0.01}}", "6:", "`y` must name the output column"),
         ("{adaptive: {logspace: [-3, 3, 2], y: mu_star, tol: 0.01}}", "6:", "at least 3 points"),
-        ("{adaptive: {y: mu_star, tol: 0.01}}", "6:", "exactly one of `logspace` and `linspace`"),
+        ("{adaptive: {y: mu_star, tol: 0.01}}", "6:", "exactly one of `logspace`, `linspace` and `shown`"),
         ("{adaptive: {logspace: [-3, 3, 7], y: mu_star, tol: 0.01, step: 2}}", "6:", "unknown field `step`"),
     ];
     for (v0, at, msg) in cases {

@@ -55,6 +55,21 @@ impl FieldError {
     }
 }
 
+/// A range of one column of another stage's table that a stage shows, e.g. a figure's
+/// x axis: the stage `stage` may sample its parameter `column` over it (`{shown: n}`), and
+/// the pipeline is checked for sweeps that leave part of it empty or compute outside it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShownRange {
+    pub stage: String,
+    pub column: String,
+    pub from: f64,
+    pub to: f64,
+    /// Shown on a log axis (sampled in log10).
+    pub log: bool,
+    /// The parameter that declares the range, e.g. `x_range` (for messages).
+    pub path: String,
+}
+
 /// A stage kind, typed. Implement this; the registry wraps it.
 pub trait Kind: Send + Sync + 'static {
     /// The name used in pipeline files, e.g. `theory.persson`.
@@ -75,6 +90,10 @@ pub trait Kind: Send + Sync + 'static {
     fn referenced_stages(_p: &Self::Params) -> Vec<(String, String)> {
         Vec::new()
     }
+    /// Ranges of other stages' columns that this stage shows (see [`ShownRange`]).
+    fn shown_ranges(_p: &Self::Params) -> Vec<ShownRange> {
+        Vec::new()
+    }
     fn run(p: &Self::Params, inputs: &Inputs) -> Result<Output>;
 }
 
@@ -92,6 +111,9 @@ pub trait DynKind: Send + Sync {
     /// and the stages it references.
     fn check(&self, params: &Value) -> Result<Checked, Vec<FieldError>>;
     fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output>;
+    /// The ranges a point with these parameters shows; none when they do not parse (their
+    /// errors are reported by `check`).
+    fn shown_ranges(&self, params: &Value) -> Vec<ShownRange>;
 }
 
 struct Typed<K: Kind>(std::marker::PhantomData<K>);
@@ -132,6 +154,9 @@ impl<K: Kind> DynKind for Typed<K> {
     fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output> {
         let p = parse::<K>(params).map_err(|e| anyhow::anyhow!("{}: {}", e.path, e.message))?;
         K::run(&p, inputs)
+    }
+    fn shown_ranges(&self, params: &Value) -> Vec<ShownRange> {
+        parse::<K>(params).map(|p| K::shown_ranges(&p)).unwrap_or_default()
     }
 }
 

@@ -10,13 +10,21 @@
 //!       V0: {logspace: [-3, 3, 61]}   # or 10^from..10^to in n points, or {linspace: [from, to, n]}
 //!       # or refined where the curve of an output column bends or peaks (`adaptive`):
 //!       # V0: {adaptive: {logspace: [-3, 3, 13], y: mu_star, tol: 0.01}}
+//!       # or over the range the figures that plot it show (their `x_range`), in n points:
+//!       # V0: {shown: 49}   or   V0: {adaptive: {shown: 13, y: mu_star, tol: 0.01}}
 //!     needs: [other_stage]     # stages whose tables this stage reads
 //! ```
 //! A stage with sweeps expands into one point per element of the Cartesian product.
 //! Nothing is run when any error is found; all errors found are reported together.
+//!
+//! Ranges shown: a stage kind may declare that a stage shows a column of another stage
+//! over a range ([`ShownRange`], a figure's `x_range`). A sweep of that parameter may
+//! sample it (`shown`), and any sweep of it is checked against it: one that leaves part of
+//! the range without points, or (when every stage that reads it shows the column over a
+//! declared range) computes points outside every range shown, gets a warning.
 
 use super::adaptive::AdaptiveAxis;
-use super::kind::{FieldError, Registry};
+use super::kind::{FieldError, Registry, ShownRange};
 use marked_yaml::types::{MarkedMappingNode, Node};
 use serde_json::{Map, Number, Value};
 use std::collections::{BTreeMap, BTreeSet};
@@ -67,6 +75,17 @@ impl fmt::Display for InvalidPipeline {
 
 impl std::error::Error for InvalidPipeline {}
 
+/// Something in a valid pipeline file that is probably not what was meant (printed, not
+/// fatal): e.g. a sweep that leaves part of a figure's declared range empty.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning(pub Diagnostic);
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: warning: {}", self.0.location, self.0.message)
+    }
+}
+
 /// One point of a stage: its canonical parameters (sorted keys, defaults filled in).
 #[derive(Clone, Debug)]
 pub struct Point {
@@ -91,6 +110,8 @@ pub struct Pipeline {
     pub file: String,
     pub description: String,
     pub stages: Vec<Stage>,
+    /// What the checks of ranges shown found (see the module's documentation).
+    pub warnings: Vec<Warning>,
 }
 
 impl Pipeline {
@@ -111,9 +132,20 @@ pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, Inv
     parse(&file, &text, registry)
 }
 
+/// A range shown by a stage (`by`), declared at `location`.
+#[derive(Clone, Debug)]
+struct Shown {
+    by: String,
+    range: ShownRange,
+    location: Location,
+}
+
 struct Ctx<'a> {
     file: &'a str,
     errors: Vec<Diagnostic>,
+    warnings: Vec<Warning>,
+    /// The ranges shown of (stage, column), from every stage that declares one.
+    shown: BTreeMap<(String, String), Vec<Shown>>,
 }
 
 impl Ctx<'_> {
@@ -189,7 +221,7 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
     let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
     let root = marked_yaml::parse_yaml_with_options(0, text, options)
         .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
-    let mut cx = Ctx { file, errors: Vec::new() };
+    let mut cx = Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new() };
     let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
     check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
     let description = root_map.get_scalar("description").map(|s| s.as_str().to_string()).unwrap_or_default();
@@ -197,6 +229,7 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
     match root_map.get_node("stages") {
         None => cx.err(cx.loc(&root), "missing `stages`: a pipeline is a list of stages"),
         Some(Node::Sequence(seq)) => {
+            cx.shown = ranges_shown(file, seq, registry);
             for node in seq.iter() {
                 if let Some(s) = parse_stage(&mut cx, node, registry) {
                     stages.push(s);
@@ -207,7 +240,14 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
     }
     check_graph(&mut cx, &stages);
     if cx.errors.is_empty() {
-        Ok(Pipeline { file: file.to_string(), description, stages: stages.into_iter().map(|s| s.stage).collect() })
+        check_ranges_shown(&mut cx, &stages);
+        cx.warnings.sort_by_key(|w| (w.0.location.line, w.0.location.column));
+        Ok(Pipeline {
+            file: file.to_string(),
+            description,
+            stages: stages.into_iter().map(|s| s.stage).collect(),
+            warnings: cx.warnings,
+        })
     } else {
         cx.errors.sort_by_key(|d| (d.location.line, d.location.column));
         Err(InvalidPipeline(cx.errors))
@@ -441,15 +481,27 @@ fn adaptive_axis<'a>(cx: &mut Ctx, stage: &str, param: &str, body: &'a Node) -> 
         cx.err(cx.loc(body), format!("{what}: expected a mapping with `logspace` or `linspace`, `y` and `tol`"));
         return None;
     };
-    check_keys(cx, m, &["logspace", "linspace", "y", "tol", "log_y", "levels", "max_points"], "an adaptive sweep");
-    let grids: Vec<&str> = ["logspace", "linspace"].into_iter().filter(|g| m.get_node(g).is_some()).collect();
+    check_keys(
+        cx,
+        m,
+        &["logspace", "linspace", "shown", "y", "tol", "log_y", "levels", "max_points"],
+        "an adaptive sweep",
+    );
+    let grids: Vec<&str> = ["logspace", "linspace", "shown"].into_iter().filter(|g| m.get_node(g).is_some()).collect();
     if grids.len() != 1 {
-        cx.err(cx.loc(body), format!("{what}: give exactly one of `logspace` and `linspace` (the initial grid)"));
+        cx.err(
+            cx.loc(body),
+            format!("{what}: give exactly one of `logspace`, `linspace` and `shown` (the initial grid)"),
+        );
         return None;
     }
-    let log = grids[0] == "logspace";
     let grid_node = m.get_node(grids[0]).unwrap();
-    let (from, to, n) = grid(cx, stage, param, grids[0], grid_node)?;
+    let (log, from, to, n) = if grids[0] == "shown" {
+        shown_grid(cx, stage, param, grid_node)?
+    } else {
+        let (from, to, n) = grid(cx, stage, param, grids[0], grid_node)?;
+        (grids[0] == "logspace", from, to, n)
+    };
     let values: Vec<(f64, &Node)> = (0..n).map(|i| (spaced(log, from, to, n, i), grid_node)).collect();
     if n < 3 {
         cx.err(cx.loc(grid_node), format!("{what}: the initial grid needs at least 3 points"));
@@ -524,10 +576,14 @@ fn sweep_values_plain<'a>(cx: &mut Ctx, stage: &str, param: &str, node: &'a Node
         Node::Mapping(map) if map.len() == 1 => {
             let (key, body) = map.iter().next().unwrap();
             let form = key.as_str();
+            if form == "shown" {
+                let (log, a, b, n) = shown_grid(cx, stage, param, body)?;
+                return Some((0..n).map(|i| (spaced(log, a, b, n, i), node)).collect());
+            }
             if form != "logspace" && form != "linspace" {
                 cx.err(
                     span_location(cx.file, key.span()),
-                    format!("stage `{stage}`: parameter `{param}`: unknown sweep `{form}` (expected a list, `logspace`, `linspace` or `adaptive`)"),
+                    format!("stage `{stage}`: parameter `{param}`: unknown sweep `{form}` (expected a list, `logspace`, `linspace`, `shown` or `adaptive`)"),
                 );
                 return None;
             }
@@ -577,6 +633,157 @@ fn grid(cx: &mut Ctx, stage: &str, param: &str, form: &str, body: &Node) -> Opti
         return None;
     }
     Some((a, b, n))
+}
+
+/// `shown: n`: n points over the union of the ranges shown of this stage's `param`, in
+/// log10 when they are shown on log axes: (log, from, to, n) in the sampling coordinate.
+fn shown_grid(cx: &mut Ctx, stage: &str, param: &str, body: &Node) -> Option<(bool, f64, f64, usize)> {
+    let what = format!("stage `{stage}`: parameter `{param}`: `shown`");
+    let n = match to_json(body).as_u64() {
+        Some(n) if (2..=100_000).contains(&n) => n as usize,
+        _ => {
+            cx.err(cx.loc(body), format!("{what} takes the number of points, an integer from 2 to 100000"));
+            return None;
+        }
+    };
+    let ranges = cx.shown.get(&(stage.to_string(), param.to_string())).cloned().unwrap_or_default();
+    let Some(first) = ranges.first() else {
+        cx.err(
+            cx.loc(body),
+            format!(
+                "{what}: no stage declares the range it shows of `{param}` from `{stage}` (give a figure that plots `{param}` of `{stage}` on its x axis an `x_range`)"
+            ),
+        );
+        return None;
+    };
+    let log = first.range.log;
+    if let Some(other) = ranges.iter().find(|r| r.range.log != log) {
+        let (l, s) = if log { (first, other) } else { (other, first) };
+        cx.err(
+            cx.loc(body),
+            format!(
+                "{what}: `{}` shows it on a log axis and `{}` on a linear one; sample it with `logspace` or `linspace`",
+                l.by, s.by
+            ),
+        );
+        return None;
+    }
+    let coord = |x: f64| if log { x.log10() } else { x };
+    let from = ranges.iter().map(|r| coord(r.range.from)).fold(f64::INFINITY, f64::min);
+    let to = ranges.iter().map(|r| coord(r.range.to)).fold(f64::NEG_INFINITY, f64::max);
+    if !(from.is_finite() && to.is_finite() && to > from) {
+        cx.err(cx.loc(body), format!("{what}: the ranges shown do not give an interval ({from} to {to})"));
+        return None;
+    }
+    Some((log, from, to, n))
+}
+
+/// The ranges every stage of the file shows, by (stage shown, column). Stages whose
+/// parameters do not parse declare none here (their errors come from `check`).
+fn ranges_shown(
+    file: &str,
+    seq: &marked_yaml::types::MarkedSequenceNode,
+    registry: &Registry,
+) -> BTreeMap<(String, String), Vec<Shown>> {
+    let mut shown: BTreeMap<(String, String), Vec<Shown>> = BTreeMap::new();
+    for node in seq.iter() {
+        let Some(map) = node.as_mapping() else { continue };
+        let (Some(name), Some(kind)) = (map.get_scalar("name"), map.get_scalar("kind")) else { continue };
+        let Some(kind) = registry.get(kind.as_str()) else { continue };
+        let Some(params) = map.get_mapping("params") else { continue };
+        for range in kind.shown_ranges(&to_json(&Node::Mapping(params.clone()))) {
+            let location = params
+                .keys()
+                .find(|k| k.as_str() == range.path)
+                .map_or_else(|| mapping_location(file, params), |k| span_location(file, k.span()));
+            shown.entry((range.stage.clone(), range.column.clone())).or_default().push(Shown {
+                by: name.as_str().to_string(),
+                range,
+                location,
+            });
+        }
+    }
+    shown
+}
+
+/// Warns of sweeps that leave part of a range shown without points, and of points
+/// computed outside every range shown when every stage that reads the stage shows the
+/// swept column over a declared range.
+fn check_ranges_shown(cx: &mut Ctx, stages: &[ParsedStage]) {
+    let shown = std::mem::take(&mut cx.shown);
+    for ((stage_name, column), ranges) in &shown {
+        let Some(stage) = stages.iter().find(|s| &s.stage.name == stage_name) else { continue };
+        let values: BTreeSet<u64> = stage
+            .stage
+            .points
+            .iter()
+            .filter_map(|p| p.params.get(column).and_then(Value::as_f64))
+            .map(f64::to_bits)
+            .collect();
+        if values.len() < 2 {
+            continue; // not swept: a single value is a point in the figure, not a curve
+        }
+        let values: Vec<f64> = values.into_iter().map(f64::from_bits).collect();
+        let (lo, hi) = (
+            values.iter().copied().fold(f64::INFINITY, f64::min),
+            values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let (lo, hi) = match &stage.stage.adaptive {
+            Some(a) if &a.param == column => (a.value(a.from.min(a.to)), a.value(a.from.max(a.to))),
+            _ => (lo, hi),
+        };
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        for r in ranges {
+            let (from, to) = (r.range.from, r.range.to);
+            if (lo > from && !close(lo, from)) || (hi < to && !close(hi, to)) {
+                cx.warnings.push(Warning(Diagnostic {
+                    location: r.location.clone(),
+                    message: format!(
+                        "`{}` shows `{column}` of `{stage_name}` from {} to {} (its `{}`), but `{stage_name}` samples it from {} to {}: part of the range has no points",
+                        r.by,
+                        fmt_num(from),
+                        fmt_num(to),
+                        r.range.path,
+                        fmt_num(lo),
+                        fmt_num(hi)
+                    ),
+                }));
+            }
+        }
+        let readers: Vec<&str> = stages
+            .iter()
+            .filter(|s| s.stage.needs.iter().any(|n| n == stage_name))
+            .map(|s| s.stage.name.as_str())
+            .collect();
+        if readers.is_empty() || !readers.iter().all(|reader| ranges.iter().any(|r| r.by == *reader)) {
+            continue; // some reader may use points outside the ranges shown
+        }
+        let inside = |x: f64| {
+            ranges
+                .iter()
+                .any(|r| (x >= r.range.from || close(x, r.range.from)) && (x <= r.range.to || close(x, r.range.to)))
+        };
+        let outside: Vec<f64> = values.iter().copied().filter(|&x| !inside(x)).collect();
+        if !outside.is_empty() {
+            let by: BTreeSet<&str> = ranges.iter().map(|r| r.by.as_str()).collect();
+            cx.warnings.push(Warning(Diagnostic {
+                location: stage.stage.location.clone(),
+                message: format!(
+                    "stage `{stage_name}` computes {} of its {} values of `{column}` ({}) outside the ranges that the stages reading it show ({}): nothing shows them",
+                    outside.len(),
+                    values.len(),
+                    outside.iter().take(4).map(|&x| fmt_num(x)).collect::<Vec<_>>().join(", ")
+                        + if outside.len() > 4 { ", ..." } else { "" },
+                    by.into_iter().collect::<Vec<_>>().join(", ")
+                ),
+            }));
+        }
+    }
+    cx.shown = shown;
+}
+
+fn fmt_num(x: f64) -> String {
+    super::table::format_number(x)
 }
 
 /// The i-th of n points from a to b, linear or in decimal exponents, rounded to 12

@@ -3,7 +3,7 @@
 //! data in long format: `series`, `x`, `y`, `x_name`, `y_name` (one row per point).
 //! Log axes are drawn by plotting log10 values on a linear axis labelled in powers of ten.
 
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, ShownRange};
 use crate::pipeline::table::{format_number, ColumnData, Table};
 use anyhow::{bail, Context, Result};
 use plotters::prelude::*;
@@ -151,7 +151,9 @@ pub struct FigureParams {
     pub log_x: bool,
     #[serde(default)]
     pub log_y: bool,
-    /// Axis ranges (data units); default: the data's extent.
+    /// Axis ranges (data units); default: the data's extent. `x_range` is also the range
+    /// this figure shows of each data layer's `x` column: a sweep of that parameter may
+    /// sample it (`{shown: n}`) and is checked against it.
     #[serde(default)]
     pub x_range: Option<[f64; 2]>,
     #[serde(default)]
@@ -592,6 +594,25 @@ impl Kind for Figure {
                 Layer::Data(d) => Some((format!("layers[{i}].data.from"), d.from.clone())),
                 Layer::Fit(f) => Some((format!("layers[{i}].fit.from"), f.from.clone())),
                 Layer::Guide(_) => None,
+            })
+            .collect()
+    }
+
+    /// With an `x_range`, every data layer shows its `x` column of its stage over it.
+    fn shown_ranges(p: &FigureParams) -> Vec<ShownRange> {
+        let Some([from, to]) = p.x_range else { return Vec::new() };
+        p.layers
+            .iter()
+            .filter_map(|l| match l {
+                Layer::Data(d) => Some(ShownRange {
+                    stage: d.from.clone(),
+                    column: d.x.clone(),
+                    from,
+                    to,
+                    log: p.log_x,
+                    path: "x_range".into(),
+                }),
+                _ => None,
             })
             .collect()
     }
