@@ -3,7 +3,11 @@
 //! points as a reference stage (a converged, finer configuration). Per configuration: the
 //! largest relative error of a quantity over the points, the total wall time, whether every
 //! point converged, whether the configuration is on the Pareto front (no other one is both
-//! faster and more accurate) and whether it meets a declared tolerance.
+//! faster and more accurate) and whether it meets a declared tolerance. With declared
+//! resolutions of the error and of the time (how far apart two values must be to differ
+//! beyond the measurement's noise), also whether it is on the front at that resolution
+//! (`on_front_resolved`): no other configuration is as accurate and as fast within the
+//! resolutions and clearly better in one.
 
 use super::check;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
@@ -38,6 +42,33 @@ pub struct ParetoParams {
     /// the estimate) and `error_over_estimate` (the largest actual error over estimate).
     #[serde(default)]
     pub error: Option<String>,
+    /// Relative errors within this fraction of each other count as equal (default 0:
+    /// compared exactly).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub error_resolution: f64,
+    /// Wall times within this fraction of each other count as equal (default 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub time_resolution: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+/// Whether configuration `i` is on the front of (error, time) among the converged ones,
+/// with errors and times that differ by less than the resolutions (fractions) counted as
+/// equal: dominated when another is no worse in both within them and clearly better in one.
+fn on_front(i: usize, error: &[f64], time: &[f64], ok: &[bool], error_res: f64, time_res: f64) -> bool {
+    let no_worse = |a: f64, b: f64, r: f64| a <= b * (1.0 + r);
+    let better = |a: f64, b: f64, r: f64| a < b * (1.0 - r);
+    ok[i]
+        && !(0..error.len()).any(|j| {
+            j != i
+                && ok[j]
+                && no_worse(error[j], error[i], error_res)
+                && no_worse(time[j], time[i], time_res)
+                && (better(error[j], error[i], error_res) || better(time[j], time[i], time_res))
+        })
 }
 
 fn rows_by_point(t: &Table, stage: &str, match_on: &[String]) -> Result<Vec<Vec<f64>>> {
@@ -56,7 +87,7 @@ pub struct Pareto;
 
 impl Kind for Pareto {
     const NAME: &'static str = "bench.pareto";
-    const VERSION: u32 = 2;
+    const VERSION: u32 = 3;
     const DOC: &'static str =
         "Run time against error: per solver configuration, max relative error vs a reference, wall time, Pareto front";
     type Params = ParetoParams;
@@ -64,6 +95,11 @@ impl Kind for Pareto {
     fn validate(p: &ParetoParams) -> Vec<FieldError> {
         let mut e = Vec::new();
         check::positive(&mut e, "tolerance", p.tolerance);
+        for (name, r) in [("error_resolution", p.error_resolution), ("time_resolution", p.time_resolution)] {
+            if !(0.0..1.0).contains(&r) {
+                e.push(FieldError::new(name, format!("must lie in [0, 1), got {r}")));
+            }
+        }
         if p.candidates.is_empty() {
             e.push(FieldError::new("candidates", "needs at least one stage"));
         }
@@ -133,22 +169,12 @@ impl Kind for Pareto {
             n_points.push(points.len() as i64);
         }
         // Front: no other converged configuration is at least as fast and as accurate, and
-        // strictly better in one.
-        let front: Vec<f64> = (0..p.candidates.len())
-            .map(|i| {
-                let dominated = (0..p.candidates.len()).any(|j| {
-                    j != i
-                        && ok[j]
-                        && time[j] <= time[i]
-                        && error[j] <= error[i]
-                        && (time[j] < time[i] || error[j] < error[i])
-                });
-                if ok[i] && !dominated {
-                    1.0
-                } else {
-                    0.0
-                }
-            })
+        // strictly better in one; the resolved front compares within the resolutions.
+        let flag = |b: bool| if b { 1.0 } else { 0.0 };
+        let front: Vec<f64> =
+            (0..p.candidates.len()).map(|i| flag(on_front(i, &error, &time, &ok, 0.0, 0.0))).collect();
+        let resolved: Vec<f64> = (0..p.candidates.len())
+            .map(|i| flag(on_front(i, &error, &time, &ok, p.error_resolution, p.time_resolution)))
             .collect();
         // Rows by wall time, so that the front draws as a line.
         let n = p.candidates.len();
@@ -162,6 +188,7 @@ impl Kind for Pareto {
             .with("points", ColumnData::I64(order.iter().map(|&i| n_points[i]).collect()))
             .with("converged", ColumnData::Bool(order.iter().map(|&i| ok[i]).collect()))
             .with_f64("on_front", pick(&front))
+            .with_f64("on_front_resolved", pick(&resolved))
             .with_f64("is_default", order.iter().map(|&i| (p.candidates[i] == p.default) as u8 as f64).collect())
             .with_f64("meets_tolerance", order.iter().map(|&i| (error[i] <= p.tolerance) as u8 as f64).collect())
             .with_f64("tolerance", vec![p.tolerance; n])
@@ -269,6 +296,8 @@ mod tests {
             tolerance: 0.005,
             default: "fine".into(),
             error: None,
+            error_resolution: 0.0,
+            time_resolution: 0.0,
         };
         let out = Pareto::run(&p, &Inputs { tables }).unwrap().table;
         let err = out.f64_column("rel_error").unwrap();
@@ -277,6 +306,24 @@ mod tests {
         assert_eq!(out.f64_column("on_front").unwrap(), vec![1.0, 1.0, 0.0]);
         assert_eq!(out.f64_column("meets_tolerance").unwrap(), vec![0.0, 1.0, 0.0]);
         assert_eq!(out.f64_column("is_default").unwrap(), vec![0.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn the_resolved_front_treats_differences_below_the_resolutions_as_ties() {
+        // a: error 1.000e-3 in 10 s; b: 1.0000001e-3 (the same within noise) in 8 s;
+        // c: 0.5e-3 in 10.1 s (as fast as a within 5 %, clearly more accurate).
+        let error = [1e-3, 1.0000001e-3, 0.5e-3];
+        let time = [10.0, 8.0, 10.1];
+        let ok = [true; 3];
+        let exact: Vec<bool> = (0..3).map(|i| on_front(i, &error, &time, &ok, 0.0, 0.0)).collect();
+        assert_eq!(exact, vec![true, true, true]);
+        // At 1 % in error and 5 % in time, a is dominated by b (faster, as accurate) and by c.
+        let resolved: Vec<bool> = (0..3).map(|i| on_front(i, &error, &time, &ok, 0.01, 0.05)).collect();
+        assert_eq!(resolved, vec![false, true, true]);
+        // A configuration that did not converge is on no front and dominates nothing.
+        let ok = [true, false, true];
+        let r: Vec<bool> = (0..3).map(|i| on_front(i, &error, &time, &ok, 0.01, 0.05)).collect();
+        assert_eq!(r, vec![false, false, true]);
     }
 
     #[test]
@@ -294,6 +341,8 @@ mod tests {
             tolerance: 0.005,
             default: "c".into(),
             error: Some("err".into()),
+            error_resolution: 0.0,
+            time_resolution: 0.0,
         };
         let out = Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table;
         assert_eq!(out.f64_column("estimate_covers").unwrap(), vec![0.5]);
