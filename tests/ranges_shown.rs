@@ -184,3 +184,19 @@ fn widening_the_range_shown_computes_only_the_new_points() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("warning: `fig` shows `V0` of `mu` from 0.001 to 1000"), "{err}");
 }
+
+#[test]
+fn every_committed_pipeline_loads_without_warnings() {
+    let registry = repro::stages::registry();
+    let mut files: Vec<_> = std::fs::read_dir("pipelines")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "yaml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 5, "{files:?}");
+    for f in files {
+        let p = spec::load(&f, &registry).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        assert!(p.warnings.is_empty(), "{}: {:?}", f.display(), p.warnings);
+    }
+}
