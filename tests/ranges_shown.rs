@@ -200,3 +200,17 @@ fn every_committed_pipeline_loads_without_warnings() {
         assert!(p.warnings.is_empty(), "{}: {:?}", f.display(), p.warnings);
     }
 }
+
+#[test]
+fn the_stage_graph_draws_the_figure_that_fixes_a_sweeps_range() {
+    let p = parse(&persson_and_figure("{shown: 5}", "      log_x: true\n      x_range: [0.01, 100]\n")).unwrap();
+    assert_eq!(p.stage("mu").unwrap().ranges_from, vec!["fig".to_string()]);
+    assert!(p.stage("fig").unwrap().ranges_from.is_empty());
+    let dot = repro::pipeline::graph::to_dot(&p);
+    assert!(dot.contains("\"mu\" -> \"fig\";"), "{dot}");
+    assert!(dot.contains("\"fig\" -> \"mu\" [style=dashed, constraint=false, label=\"range\"];"), "{dot}");
+    // An explicit grid takes no range from the figure.
+    let p = parse(&persson_and_figure("{logspace: [-2, 2, 5]}", "      log_x: true\n      x_range: [0.01, 100]\n"))
+        .unwrap();
+    assert!(p.stage("mu").unwrap().ranges_from.is_empty());
+}

@@ -81,7 +81,8 @@ pub fn with_ancestors(p: &Pipeline, targets: &[usize]) -> BTreeSet<usize> {
     seen
 }
 
-/// The pipeline as a Graphviz digraph: one node per stage (kind and number of points).
+/// The pipeline as a Graphviz digraph: one node per stage (kind and number of points), an
+/// edge per need, and a dashed one from a figure to each sweep that samples its range.
 pub fn to_dot(p: &Pipeline) -> String {
     let mut s = String::from("digraph pipeline {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n");
     for st in &p.stages {
@@ -98,6 +99,12 @@ pub fn to_dot(p: &Pipeline) -> String {
     for st in &p.stages {
         for n in &st.needs {
             s.push_str(&format!("  \"{n}\" -> \"{}\";\n", st.name));
+        }
+    }
+    // A figure whose declared range fixes a sweep's points: dashed, against the data flow.
+    for st in &p.stages {
+        for f in &st.ranges_from {
+            s.push_str(&format!("  \"{f}\" -> \"{}\" [style=dashed, constraint=false, label=\"range\"];\n", st.name));
         }
     }
     s.push_str("}\n");

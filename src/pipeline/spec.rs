@@ -102,6 +102,9 @@ pub struct Stage {
     pub points: Vec<Point>,
     /// The parameter whose points are refined after each round (`adaptive`), if any.
     pub adaptive: Option<AdaptiveAxis>,
+    /// The stages whose declared ranges a `shown` sweep of this stage samples (not inputs:
+    /// they read this stage; their ranges only fix its points).
+    pub ranges_from: Vec<String>,
     pub location: Location,
 }
 
@@ -146,6 +149,8 @@ struct Ctx<'a> {
     warnings: Vec<Warning>,
     /// The ranges shown of (stage, column), from every stage that declares one.
     shown: BTreeMap<(String, String), Vec<Shown>>,
+    /// The stages whose ranges the stage being parsed samples.
+    ranges_used: BTreeSet<String>,
 }
 
 impl Ctx<'_> {
@@ -221,7 +226,8 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
     let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
     let root = marked_yaml::parse_yaml_with_options(0, text, options)
         .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
-    let mut cx = Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new() };
+    let mut cx =
+        Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new(), ranges_used: BTreeSet::new() };
     let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
     check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
     let description = root_map.get_scalar("description").map(|s| s.as_str().to_string()).unwrap_or_default();
@@ -337,7 +343,9 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             return None;
         }
     };
+    cx.ranges_used.clear();
     let (points, adaptive) = expand_points(cx, &name, params_map, kind.sweepable())?;
+    let ranges_from: Vec<String> = std::mem::take(&mut cx.ranges_used).into_iter().collect();
     let mut checked = Vec::with_capacity(points.len());
     let mut referenced: BTreeSet<(String, String)> = BTreeSet::new();
     for p in points {
@@ -374,6 +382,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             needs,
             points: checked,
             adaptive,
+            ranges_from,
             location: mapping_location(cx.file, map),
         },
         need_locations,
@@ -668,6 +677,7 @@ fn shown_grid(cx: &mut Ctx, stage: &str, param: &str, body: &Node) -> Option<(bo
         );
         return None;
     }
+    cx.ranges_used.extend(ranges.iter().map(|r| r.by.clone()));
     let coord = |x: f64| if log { x.log10() } else { x };
     let from = ranges.iter().map(|r| coord(r.range.from)).fold(f64::INFINITY, f64::min);
     let to = ranges.iter().map(|r| coord(r.range.to)).fold(f64::NEG_INFINITY, f64::max);
