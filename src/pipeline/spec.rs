@@ -25,6 +25,7 @@
 
 use super::adaptive::AdaptiveAxis;
 use super::kind::{FieldError, Registry, ShownRange};
+use super::table::format_number;
 use marked_yaml::types::{MarkedMappingNode, Node};
 use serde_json::{Map, Number, Value};
 use std::collections::{BTreeMap, BTreeSet};
@@ -738,10 +739,6 @@ fn check_ranges_shown(cx: &mut Ctx, stages: &[ParsedStage]) {
             values.iter().copied().fold(f64::INFINITY, f64::min),
             values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         );
-        let (lo, hi) = match &stage.stage.adaptive {
-            Some(a) if &a.param == column => (a.value(a.from.min(a.to)), a.value(a.from.max(a.to))),
-            _ => (lo, hi),
-        };
         let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
         for r in ranges {
             let (from, to) = (r.range.from, r.range.to);
@@ -751,11 +748,11 @@ fn check_ranges_shown(cx: &mut Ctx, stages: &[ParsedStage]) {
                     message: format!(
                         "`{}` shows `{column}` of `{stage_name}` from {} to {} (its `{}`), but `{stage_name}` samples it from {} to {}: part of the range has no points",
                         r.by,
-                        fmt_num(from),
-                        fmt_num(to),
+                        format_number(from),
+                        format_number(to),
                         r.range.path,
-                        fmt_num(lo),
-                        fmt_num(hi)
+                        format_number(lo),
+                        format_number(hi)
                     ),
                 }));
             }
@@ -782,7 +779,7 @@ fn check_ranges_shown(cx: &mut Ctx, stages: &[ParsedStage]) {
                     "stage `{stage_name}` computes {} of its {} values of `{column}` ({}) outside the ranges that the stages reading it show ({}): nothing shows them",
                     outside.len(),
                     values.len(),
-                    outside.iter().take(4).map(|&x| fmt_num(x)).collect::<Vec<_>>().join(", ")
+                    outside.iter().take(4).map(|&x| format_number(x)).collect::<Vec<_>>().join(", ")
                         + if outside.len() > 4 { ", ..." } else { "" },
                     by.into_iter().collect::<Vec<_>>().join(", ")
                 ),
@@ -790,10 +787,6 @@ fn check_ranges_shown(cx: &mut Ctx, stages: &[ParsedStage]) {
         }
     }
     cx.shown = shown;
-}
-
-fn fmt_num(x: f64) -> String {
-    super::table::format_number(x)
 }
 
 /// The i-th of n points from a to b, linear or in decimal exponents, rounded to 12
@@ -811,7 +804,7 @@ pub fn round12(x: f64) -> f64 {
 
 /// The `name=value` token of a sweep point's label.
 pub fn label_token(name: &str, x: f64) -> String {
-    format!("{name}={}", super::table::format_number(x))
+    format!("{name}={}", format_number(x))
 }
 
 fn expand_points<'a>(

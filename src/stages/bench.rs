@@ -44,15 +44,11 @@ pub struct ParetoParams {
     pub error: Option<String>,
     /// Relative errors within this fraction of each other count as equal (default 0:
     /// compared exactly).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default)]
     pub error_resolution: f64,
     /// Wall times within this fraction of each other count as equal (default 0).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default)]
     pub time_resolution: f64,
-}
-
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
 }
 
 /// Whether configuration `i` is on the front of (error, time) among the converged ones,
