@@ -143,7 +143,20 @@ enum Command {
         /// Only these columns, comma-separated.
         #[arg(long, value_delimiter = ',')]
         columns: Vec<String>,
+        /// Comma-separated values with every digit (floats round-trip exactly), for other
+        /// tools; the default is an aligned table with polars' rounding.
+        #[arg(long)]
+        csv: bool,
     },
+}
+
+/// A CSV field: quoted (with doubled quotes) when it holds a comma, a quote or a newline.
+fn csv_field(t: &str) -> String {
+    if t.contains([',', '"', '\n']) {
+        format!("\"{}\"", t.replace('"', "\"\""))
+    } else {
+        t.to_string()
+    }
 }
 
 fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
@@ -313,7 +326,7 @@ fn main() -> ExitCode {
             println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
             Ok(ExitCode::SUCCESS)
         }
-        Command::Show { file, columns } => {
+        Command::Show { file, columns, csv } => {
             let df = repro::pipeline::table::read_parquet(&file)?;
             let names: Vec<String> = if columns.is_empty() {
                 df.get_column_names().iter().map(|c| c.to_string()).collect()
@@ -324,14 +337,25 @@ fn main() -> ExitCode {
                 .iter()
                 .map(|c| df.column(c).with_context(|| format!("{}: no column `{c}`", file.display())))
                 .collect::<anyhow::Result<Vec<_>>>()?;
+            let cell = |v: polars::prelude::AnyValue| match v {
+                polars::prelude::AnyValue::Float64(x) if csv => format!("{x:?}"),
+                polars::prelude::AnyValue::String(t) if csv => csv_field(t),
+                polars::prelude::AnyValue::StringOwned(t) if csv => csv_field(&t),
+                v => v.to_string(),
+            };
             let cells: Vec<Vec<String>> = (0..df.height())
-                .map(|i| cols.iter().map(|c| c.get(i).map(|v| v.to_string()).unwrap_or_default()).collect())
+                .map(|i| cols.iter().map(|c| c.get(i).map(&cell).unwrap_or_default()).collect())
                 .collect();
             let widths: Vec<usize> = (0..names.len())
                 .map(|j| cells.iter().map(|r| r[j].chars().count()).chain([names[j].len()]).max().unwrap_or(0))
                 .collect();
-            let line =
-                |r: &[String]| r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ");
+            let line = |r: &[String]| {
+                if csv {
+                    r.join(",")
+                } else {
+                    r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ")
+                }
+            };
             // A reader that stops early (`| head`) closes the pipe: stop quietly.
             use std::io::Write;
             let mut out = std::io::stdout().lock();
@@ -350,4 +374,15 @@ fn main() -> ExitCode {
         }
     })();
     result.unwrap_or_else(fail)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn csv_fields_are_quoted_only_when_they_must_be() {
+        assert_eq!(super::csv_field("λ = 1"), "λ = 1");
+        assert_eq!(super::csv_field("λ = 1, W = 0.1"), "\"λ = 1, W = 0.1\"");
+        assert_eq!(super::csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+        assert_eq!(super::csv_field("two\nlines"), "\"two\nlines\"");
+    }
 }

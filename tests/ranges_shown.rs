@@ -148,15 +148,22 @@ fn the_thesis_pipeline_samples_what_its_figures_show_and_nothing_else() {
     assert!(p.warnings.is_empty(), "{}", p.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n"));
     // The sweeps turned into `shown` kept their points (and so their cache keys).
     let grid = |a: f64, b: f64, n: usize| -> Vec<f64> { (0..n).map(|i| spec::spaced(true, a, b, n, i)).collect() };
-    assert_eq!(values(&p, "persson", "V0"), grid(-3.0, 3.0, 49));
     assert_eq!(values(&p, "persson_brener", "V_PB"), grid(-4.0, 10.0, 57));
     assert_eq!(values(&p, "bem_large_load", "V0"), grid(-2.0, 2.0, 17));
     assert_eq!(values(&p, "max_vs_load", "W"), grid(-1.0, 2.0, 10));
     assert_eq!(values(&p, "rolling", "V0"), grid(-4.0, 3.0, 29));
     assert_eq!(values(&p, "pb_power_law", "V_PB"), grid(-4.0, 12.0, 65));
     assert_eq!(values(&p, "rolling_power_law", "V0"), grid(-4.0, 6.0, 41));
-    let fm = p.stage("friction_maps").unwrap().adaptive.clone().unwrap();
-    assert_eq!((fm.from, fm.to, fm.initial), (-3.0, 3.0, 13));
+    // The adaptive ones start from the range shown.
+    for (stage, range, initial) in [
+        ("friction_maps", (-3.0, 3.0), 13),
+        ("persson", (-3.0, 3.0), 13),
+        ("persson_k10", (-2.0, 2.0), 9),
+        ("rolling_sls_wide", (-4.0, 6.0), 11),
+    ] {
+        let a = p.stage(stage).unwrap().adaptive.clone().unwrap();
+        assert_eq!(((a.from, a.to), a.initial), (range, initial), "{stage}");
+    }
 }
 
 #[test]
