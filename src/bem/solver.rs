@@ -535,12 +535,30 @@ impl ActiveLu {
 
 /// The active LU in use. One of the mesh with half the elements (mesh sequencing) is
 /// first tried as a two-grid preconditioner (`ActiveLu::solve_two_grid`); where GMRES
-/// does not converge with it, the mesh gets its own LU.
+/// does not converge with it, the mesh gets its own LU. A frozen LU is also rebuilt once the
+/// GMRES iterations it has cost beyond its first solve's count (`excess`) outweigh a new
+/// factorization (`REBUILD_BALANCE`).
 #[derive(Default)]
 struct Preconditioner {
     active: Option<ActiveLu>,
     factorizations: usize,
+    /// GMRES iterations of the first Newton step solved with the current LU.
+    first: Option<usize>,
+    /// GMRES iterations beyond `first` summed over the later steps.
+    excess: usize,
 }
+
+/// A frozen active LU of m nodes is rebuilt for the next Newton step once its `excess`
+/// GMRES iterations exceed REBUILD_BALANCE m / 3: a factorization costs about (2/3) m^3
+/// flops and an iteration's triangular solves 2 m^2, so at 1 the iterations lost would have
+/// paid for it by that count (the ski-rental balance, 2-competitive). The factorization is
+/// blocked and the solves are memory-bound, and each iteration adds an FFT product and the
+/// orthogonalisation, so the measured balance is lower: the 22 BEM stages of `thesis.yaml`
+/// (release, empty caches, one after the other, 2 jobs) took 139.9 s of task time with no
+/// such rebuild, 112.5 / 110.6 / 114.4 s at 0.1 / 0.2 / 0.3 (pull-offs 0.42-0.63 x, the
+/// maxima 0.70 x, lambda24 0.93 x), 180.9 s with a rebuild whenever GMRES took more than 12
+/// and twice its first count (lambda24 2.2 x). The counts, not times, decide: deterministic.
+const REBUILD_BALANCE: f64 = 0.2;
 
 /// The fewest elements of a mesh for which the two-grid preconditioner is tried instead of
 /// a fresh active LU, whose cost grows as the cube of the active nodes (measured at
@@ -592,20 +610,27 @@ impl Preconditioner {
             self.active = None;
         }
         for fresh in [false, true] {
-            // A preconditioner from another mesh (mesh sequencing) is rebuilt.
-            let stale = self.active.as_ref().is_none_or(|a| a.n != sys.op.mesh.n);
+            // A preconditioner from another mesh (mesh sequencing), or one whose extra
+            // iterations have outweighed a factorization, is rebuilt.
+            let stale = self.active.as_ref().is_none_or(|a| {
+                a.n != sys.op.mesh.n || self.excess as f64 > REBUILD_BALANCE * a.idx.len() as f64 / 3.0
+            });
             if fresh || stale {
                 self.active = Some(ActiveLu::new(sys, dp, DROP));
                 self.factorizations += 1;
+                (self.first, self.excess) = (None, 0);
             }
             let pre = self.active.as_ref().unwrap();
             let g = gmres(apply, |v| pre.solve(v), rhs, tol, GMRES_ITERATIONS);
             if g.converged {
+                let first = *self.first.get_or_insert(g.iterations);
+                self.excess += g.iterations.saturating_sub(first);
                 return g.x;
             }
         }
         let exact = ActiveLu::new(sys, dp, 0.0);
         self.factorizations += 1;
+        (self.first, self.excess) = (None, 0);
         let d = exact.solve(rhs);
         self.active = Some(exact);
         d
@@ -1298,7 +1323,9 @@ mod tests {
     fn newton_stops_at_the_requested_tolerance() {
         // A sliding adhesive point: the default tolerance takes more iterations to a smaller
         // residual; a loose one stops as soon as the residual is under it, with mu* close
-        // (quadratic convergence: within 1e-4 here) and the load still balanced.
+        // (1e-3 stops one or two quadratic iterations early: 2.1e-4 relative here since the
+        // frozen LU is rebuilt by `REBUILD_BALANCE`, 1.2e-5 before; up to 2.2e-4 on the
+        // bench's points, README "Run time against error") and the load still balanced.
         let mesh = Mesh { n: 300, half_length: 6.0 };
         let tight = solve(&Params::sls(1.0, 1.0, 0.1, 1.0), mesh);
         let loose = solve(&Params { newton_tol: 1e-3, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
@@ -1306,7 +1333,7 @@ mod tests {
         assert!(loose.converged && loose.residual <= 1e-3 && loose.residual > TOLERANCE, "{}", loose.residual);
         assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
         let (a, b) = (tight.friction().mu_star, loose.friction().mu_star);
-        assert!((a - b).abs() < 1e-4 * a, "{a} vs {b}");
+assert!((a - b).abs() < 5e-4 * a, "{a} vs {b}");
     }
 
     #[test]
