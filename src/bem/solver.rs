@@ -1333,7 +1333,7 @@ mod tests {
         assert!(loose.converged && loose.residual <= 1e-3 && loose.residual > TOLERANCE, "{}", loose.residual);
         assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
         let (a, b) = (tight.friction().mu_star, loose.friction().mu_star);
-assert!((a - b).abs() < 5e-4 * a, "{a} vs {b}");
+        assert!((a - b).abs() < 5e-4 * a, "{a} vs {b}");
     }
 
     #[test]
