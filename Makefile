@@ -40,7 +40,7 @@ bench-gamma-c:
 	/usr/bin/time -f "gamma_c map: %e s wall, %U s user" ./target/release/repro run $(PIPELINE) --target gamma_c_map \
 		--cache target/bench-gamma-c/cache --figures target/bench-gamma-c/figures --tables target/bench-gamma-c/tables -q
 
-# Run time against error (pipelines/bench.yaml: figures/bench_bem.svg, bench_fem.svg, bench_pulloff.svg and
+# Run time against error (pipelines/bench.yaml: figures/bench_bem.svg, bench_bem24.svg, bench_fem.svg, bench_pulloff.svg and
 # tables/pareto_*.parquet) on an empty cache so that every wall time is measured, the full
 # stress grid (pipelines/stress.yaml: tables/stress_summary.parquet; its lambda = 30 point
 # alone takes about 9 min on 2 cores, measured in session 14; everything else about 2 min), then the
@@ -52,6 +52,7 @@ bench:
 	/usr/bin/time -f "stress grid: %e s wall" ./target/release/repro run pipelines/stress.yaml --cache target/bench-cache -q
 	./target/release/repro show tables/stress_summary.parquet
 	./target/release/repro show tables/pareto_bem.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
+	./target/release/repro show tables/pareto_bem24.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
 	./target/release/repro show tables/pareto_fem.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
 	$(CARGO) bench --bench micro
 	$(CARGO) bench --bench scale
