@@ -1322,18 +1322,28 @@ mod tests {
     #[test]
     fn newton_stops_at_the_requested_tolerance() {
         // A sliding adhesive point: the default tolerance takes more iterations to a smaller
-        // residual; a loose one stops as soon as the residual is under it, with mu* close
-        // (1e-3 stops one or two quadratic iterations early: 2.1e-4 relative here since the
-        // frozen LU is rebuilt by `REBUILD_BALANCE`, 1.2e-5 before; up to 2.2e-4 on the
-        // bench's points, README "Run time against error") and the load still balanced.
+        // residual; a loose one stops as soon as the residual is under it, with mu* off by no
+        // more than that residual (relative; units of H) and the load still balanced.
+        // Measured: 0.52 x the residual at newton_tol 1e-3 (residual 4.0e-4, mu* 2.1e-4 off),
+        // 0.61 x at 1e-4, 0.54 x at 1e-5. Until the frozen LU was rebuilt by
+        // `REBUILD_BALANCE` the 1e-3 solve stopped one iteration later, 1.2e-5 off, and this
+        // test asserted 1e-4; the bound is now the residual's, which that path also met.
         let mesh = Mesh { n: 300, half_length: 6.0 };
         let tight = solve(&Params::sls(1.0, 1.0, 0.1, 1.0), mesh);
-        let loose = solve(&Params { newton_tol: 1e-3, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
         assert!(tight.converged && tight.residual <= TOLERANCE, "{}", tight.residual);
-        assert!(loose.converged && loose.residual <= 1e-3 && loose.residual > TOLERANCE, "{}", loose.residual);
-        assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
-        let (a, b) = (tight.friction().mu_star, loose.friction().mu_star);
-        assert!((a - b).abs() < 5e-4 * a, "{a} vs {b}");
+        let a = tight.friction().mu_star;
+        for newton_tol in [1e-3, 1e-5] {
+            let loose = solve(&Params { newton_tol, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
+            assert!(
+                loose.converged && loose.residual <= newton_tol && loose.residual > TOLERANCE,
+                "{}",
+                loose.residual
+            );
+            assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
+            let b = loose.friction().mu_star;
+            assert!((a - b).abs() <= loose.residual * a, "{a} vs {b} at residual {}", loose.residual);
+            assert!((loose.load() - 1.0).abs() <= newton_tol, "load {}", loose.load());
+        }
     }
 
     #[test]
