@@ -195,6 +195,23 @@ fn thesis_stage(s: &Scratch, stage: &str) -> polars::prelude::DataFrame {
     s.table(stage)
 }
 
+/// The curves of `kind` with `params` on a uniform grid of `n` speeds V0 over 10^from..10^to,
+/// grouped by `group`, y = `y` (the dense references and the grids the thesis replaced).
+fn uniform_curves(
+    kind: &str,
+    params: &str,
+    group: &str,
+    y: &str,
+    (from, to): (i32, i32),
+    n: usize,
+) -> Vec<(f64, Vec<(f64, f64)>)> {
+    let r = Scratch::new(&format!("adaptive-uniform-{kind}-{n}"));
+    r.run_pipeline(&format!(
+        "stages:\n  - name: u\n    kind: {kind}\n    params: {{{params}, V0: {{logspace: [{from}, {to}, {n}]}}}}\n"
+    ));
+    curves(&r.table("u"), Some(group), "V0", y)
+}
+
 /// Persson's curves of Fig. 7.3 (`persson`, adaptive from 13 points over the range shown):
 /// fewer points than two uniform grids and more accurate than the one of the same size,
 /// against 385 points per curve. Measured: 256 points within 0.21 % of each peak; uniform
@@ -203,13 +220,8 @@ fn thesis_stage(s: &Scratch, stage: &str) -> polars::prelude::DataFrame {
 fn the_thesis_persson_curves_beat_a_uniform_grid_of_their_size() {
     let s = Scratch::new("adaptive-thesis-persson");
     let adaptive = thesis_stage(&s, "persson");
-    let grid = |n: usize| {
-        let r = Scratch::new(&format!("adaptive-thesis-persson-{n}"));
-        r.run_pipeline(&format!(
-            "stages:\n  - name: mu\n    kind: theory.persson\n    params: {{inv_k: [1.1, 2, 10, 100, 1000], V0: {{logspace: [-3, 3, {n}]}}}}\n"
-        ));
-        curves(&r.table("mu"), Some("inv_k"), "V0", "mu_star")
-    };
+    let grid =
+        |n: usize| uniform_curves("theory.persson", "inv_k: [1.1, 2, 10, 100, 1000]", "inv_k", "mu_star", (-3, 3), n);
     let reference = grid(385);
     let sampled = curves(&adaptive, Some("inv_k"), "V0", "mu_star");
     let n = adaptive.height();
@@ -233,13 +245,7 @@ fn the_thesis_sls_rolling_curves_match_a_grid_twice_their_size() {
     let s = Scratch::new("adaptive-thesis-sls");
     let adaptive = thesis_stage(&s, "rolling_sls_wide");
     assert!(column(&adaptive, "converged").iter().all(|&c| c == 1.0));
-    let grid = |n: usize| {
-        let r = Scratch::new(&format!("adaptive-thesis-sls-{n}"));
-        r.run_pipeline(&format!(
-            "stages:\n  - name: f\n    kind: bem.sweep\n    params: {{lambda: [1, 3], W: 0.1, k: 0.001, V0: {{logspace: [-4, 6, {n}]}}}}\n"
-        ));
-        curves(&r.table("f"), Some("lambda"), "V0", "F_T")
-    };
+    let grid = |n: usize| uniform_curves("bem.sweep", "lambda: [1, 3], W: 0.1, k: 0.001", "lambda", "F_T", (-4, 6), n);
     let reference = grid(161);
     let n = adaptive.height();
     let e_adaptive = worst_deviation(&curves(&adaptive, Some("lambda"), "V0", "F_T"), &reference, true);

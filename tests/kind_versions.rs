@@ -6,7 +6,7 @@
 //! the new fingerprint with `REPRO_BLESS=1 cargo test --test kind_versions`.
 
 use repro::pipeline::cache::output_hash;
-use repro::pipeline::kind::Inputs;
+use repro::pipeline::kind::{Inputs, Output};
 use repro::pipeline::table::Table;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
@@ -121,25 +121,37 @@ fn reference_inputs() -> BTreeMap<String, Table> {
     ])
 }
 
-#[test]
-fn outputs_change_only_with_a_version_bump() {
-    let registry = repro::stages::registry();
+/// Every registered kind with its version and its output on the reference parameters and
+/// inputs (None: the kind has no reference parameters yet).
+fn reference_runs() -> Vec<(String, u32, Option<Output>)> {
     let params = reference_params();
     let tables = reference_inputs();
     let inputs = Inputs { tables: tables.iter().map(|(k, v)| (k.clone(), v)).collect() };
+    repro::stages::registry()
+        .iter()
+        .map(|kind| {
+            let out = params.get(kind.name()).map(|p| {
+                let (canonical, _) = kind.check(p).unwrap_or_else(|e| panic!("{}: {e:?}", kind.name()));
+                kind.run(&canonical, &inputs).unwrap_or_else(|e| panic!("{}: {e:#}", kind.name()))
+            });
+            (kind.name().to_string(), kind.version(), out)
+        })
+        .collect()
+}
+
+#[test]
+fn outputs_change_only_with_a_version_bump() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/kind_fingerprints.json");
     let recorded: BTreeMap<String, String> =
         std::fs::read(&path).ok().and_then(|b| serde_json::from_slice(&b).ok()).unwrap_or_default();
     let mut current = BTreeMap::new();
     let mut problems = Vec::new();
-    for kind in registry.iter() {
-        let Some(p) = params.get(kind.name()) else {
-            problems.push(format!("{}: add reference parameters to tests/kind_versions.rs", kind.name()));
+    for (name, version, out) in reference_runs() {
+        let Some(out) = out else {
+            problems.push(format!("{name}: add reference parameters to tests/kind_versions.rs"));
             continue;
         };
-        let (canonical, _) = kind.check(p).unwrap_or_else(|e| panic!("{}: {e:?}", kind.name()));
-        let out = kind.run(&canonical, &inputs).unwrap_or_else(|e| panic!("{}: {e:#}", kind.name()));
-        let id = format!("{}@v{}", kind.name(), kind.version());
+        let id = format!("{name}@v{version}");
         let hash = output_hash(&out);
         match recorded.get(&id) {
             Some(h) if *h != hash => problems.push(format!(
@@ -198,21 +210,15 @@ const NOT_SOLVERS: &[&str] = &[
 
 #[test]
 fn every_solver_result_carries_an_error_estimate() {
-    let registry = repro::stages::registry();
-    let params = reference_params();
-    let tables = reference_inputs();
-    let inputs = Inputs { tables: tables.iter().map(|(k, v)| (k.clone(), v)).collect() };
     let mut problems = Vec::new();
-    for kind in registry.iter() {
-        let name = kind.name();
+    for (name, _, out) in reference_runs() {
         let Some((_, errors)) = SOLVER_ERROR_COLUMNS.iter().find(|(k, _)| *k == name) else {
-            if !NOT_SOLVERS.contains(&name) {
+            if !NOT_SOLVERS.contains(&name.as_str()) {
                 problems.push(format!("{name}: classify it in SOLVER_ERROR_COLUMNS or NOT_SOLVERS"));
             }
             continue;
         };
-        let (canonical, _) = kind.check(&params[name]).unwrap();
-        let out = kind.run(&canonical, &inputs).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let out = out.unwrap_or_else(|| panic!("{name}: no reference parameters"));
         assert!(out.table.n_rows() > 0, "{name}: no rows");
         for column in errors.iter() {
             match out.table.f64_column(column) {
