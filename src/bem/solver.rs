@@ -1322,17 +1322,18 @@ mod tests {
     #[test]
     fn newton_stops_at_the_requested_tolerance() {
         // A sliding adhesive point: the default tolerance takes more iterations to a smaller
-        // residual; a loose one stops as soon as the residual is under it, with mu* off by no
-        // more than that residual (relative; units of H) and the load still balanced.
-        // Measured: 0.52 x the residual at newton_tol 1e-3 (residual 4.0e-4, mu* 2.1e-4 off),
-        // 0.61 x at 1e-4, 0.54 x at 1e-5. Until the frozen LU was rebuilt by
-        // `REBUILD_BALANCE` the 1e-3 solve stopped one iteration later, 1.2e-5 off, and this
-        // test asserted 1e-4; the bound is now the residual's, which that path also met.
+        // residual; a looser one stops as soon as the residual is under it, with mu* close and
+        // the load balanced to that tolerance. How close depends on where Newton's path
+        // crosses the tolerance, not only on the tolerance: measured relative errors of mu*
+        // (no LU rebuild -> `REBUILD_BALANCE`): at newton_tol 1e-3 1.2e-5 -> 2.1e-4 (one
+        // iteration fewer, residual 1.3e-4 -> 4.0e-4; the bench's points show up to 2.2e-4),
+        // at 1e-5 1.1e-6 -> 3.8e-9. This test asserted 1e-4 at 1e-3 before the rebuild rule;
+        // it now asserts 5e-4 there, and 1e-5 at 1e-5.
         let mesh = Mesh { n: 300, half_length: 6.0 };
         let tight = solve(&Params::sls(1.0, 1.0, 0.1, 1.0), mesh);
         assert!(tight.converged && tight.residual <= TOLERANCE, "{}", tight.residual);
         let a = tight.friction().mu_star;
-        for newton_tol in [1e-3, 1e-5] {
+        for (newton_tol, mu_tol) in [(1e-3, 5e-4), (1e-5, 1e-5)] {
             let loose = solve(&Params { newton_tol, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
             assert!(
                 loose.converged && loose.residual <= newton_tol && loose.residual > TOLERANCE,
@@ -1341,7 +1342,7 @@ mod tests {
             );
             assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
             let b = loose.friction().mu_star;
-            assert!((a - b).abs() <= loose.residual * a, "{a} vs {b} at residual {}", loose.residual);
+            assert!((a - b).abs() < mu_tol * a, "{a} vs {b} at newton_tol {newton_tol}");
             assert!((loose.load() - 1.0).abs() <= newton_tol, "load {}", loose.load());
         }
     }
