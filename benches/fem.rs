@@ -8,7 +8,7 @@
 use repro::fem::contact::Plate;
 use repro::fem::cycle::{load_unload, CycleOptions};
 use repro::fem::mesh::ShellMesh;
-use repro::fem::stability::LIFT_THRESHOLD;
+use repro::fem::stability::{Criterion, LIFT_THRESHOLD};
 use repro::fem::system::{Base, Model};
 use std::time::Instant;
 
@@ -30,7 +30,7 @@ fn main() {
             steps: 30,
             max_cuts: 8,
             bisections: 6,
-            lift_threshold: LIFT_THRESHOLD,
+            criterion: Criterion::LiftThreshold(LIFT_THRESHOLD),
             hold: Default::default(),
             trace_unstable: true,
             unload: true,

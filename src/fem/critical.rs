@@ -191,7 +191,7 @@ pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) ->
 mod tests {
     use super::*;
     use crate::fem::mesh::ShellMesh;
-    use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
+    use crate::fem::stability::{AdhesiveHold, Criterion, LIFT_THRESHOLD};
     use crate::fem::system::Base;
 
     #[test]
@@ -283,7 +283,7 @@ mod tests {
             steps: 30,
             max_cuts: 6,
             bisections: 4,
-            lift_threshold: LIFT_THRESHOLD,
+            criterion: Criterion::LiftThreshold(LIFT_THRESHOLD),
             hold: AdhesiveHold::Free,
             trace_unstable: false,
             unload: false,

@@ -21,7 +21,7 @@ use super::contact::Plate;
 use super::indent::{
     apex_z, descend, descend_loaded, dimple, solve_at, solve_from, solve_from_extending, Options, Step,
 };
-use super::stability::{unilaterally_stable, AdhesiveHold};
+use super::stability::{unilaterally_stable, AdhesiveHold, Criterion};
 use super::system::Model;
 
 /// Settings of the cycle (lengths in the mesh's units).
@@ -35,8 +35,8 @@ pub struct CycleOptions {
     /// Bisections locating each event (the event's delta is then known to
     /// delta_max / steps / 2^bisections).
     pub bisections: u32,
-    /// Pressure threshold of the stability test (`stability::LIFT_THRESHOLD`).
-    pub lift_threshold: f64,
+    /// Which states count as stable (`stability::Criterion`).
+    pub criterion: Criterion,
     /// What holds touching points of an adhesive contact in the stability test.
     pub hold: AdhesiveHold,
     /// Also trace the unstable branch past the inverted branch's limit point (arc length).
@@ -456,7 +456,11 @@ fn work(points: &[CyclePoint]) -> f64 {
 /// Runs the cycle from the reference state.
 pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> Cycle {
     let base = opt.delta_max / opt.steps as f64;
-    let stable = |s: &Step| unilaterally_stable(model, plate, s, opt.lift_threshold, opt.hold);
+    let stable = |s: &Step| unilaterally_stable(model, plate, s, opt.criterion.threshold(), opt.hold);
+    // Under the tangent criterion a step that finds no state at the smallest size has
+    // passed the limit point of the flattened branch (no equilibrium lies beyond it), and a
+    // state that Newton finds already inverted lies past it too.
+    let limit_point = opt.criterion == Criterion::Tangent;
     let mut cycle = Cycle { complete: true, ..Default::default() };
     let zero = Step {
         delta: 0.0,
@@ -485,32 +489,36 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     while cur.delta < opt.delta_max * (1.0 - 1e-12) {
         let target = (cur.delta + dd).min(opt.delta_max);
         let mut s = solve_from(model, plate, e, target, &cur, Options::default());
+        let past_fold = limit_point && !inverted && cycle.buckling.is_none();
         if !s.converged {
             if cuts < opt.max_cuts {
                 cuts += 1;
                 dd *= 0.5;
                 continue;
             }
-            loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
-            cycle.complete = false;
-            break;
+            if !past_fold {
+                loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
+                cycle.complete = false;
+                break;
+            }
         }
-        s.stable = stable(&s);
-        if !inverted && !s.stable {
+        s.stable = s.converged && stable(&s);
+        let leaves = |s: &Step| !s.stable || (limit_point && is_inverted(model, s));
+        if !inverted && leaves(&s) {
             let retry = cycle.buckling.is_some();
             let from = if !retry {
                 // Bisect for the last stable flattened state: F_buckling.
                 let (mut lo, mut hi) = (cur.clone(), s.clone());
                 for _ in 0..opt.bisections {
                     let mut mid = solve_from(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo, Options::default());
-                    if !mid.converged {
+                    if !mid.converged && !limit_point {
                         break;
                     }
-                    mid.stable = stable(&mid);
-                    if mid.stable {
-                        lo = mid;
-                    } else {
+                    mid.stable = mid.converged && stable(&mid);
+                    if leaves(&mid) {
                         hi = mid;
+                    } else {
+                        lo = mid;
                     }
                 }
                 if lo.delta > cur.delta {
@@ -520,7 +528,9 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     delta: hi.delta,
                     force_before: lo.contact.force,
                     delta_stable: lo.delta,
-                    force_unstable: hi.contact.force,
+                    // Past a limit point there may be no state: the force there is the
+                    // last one's (the bracket is then the bisection's delta alone).
+                    force_unstable: if hi.converged { hi.contact.force } else { lo.contact.force },
                     force_after: f64::NAN,
                     radius_before: lo.contact.radius,
                     pull_before: lo.contact.adhesive,
@@ -530,7 +540,12 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     // The question is answered.
                     break;
                 }
-                hi
+                // The jump starts from the last state where the first past the fold has none.
+                if hi.converged {
+                    hi
+                } else {
+                    lo
+                }
             } else {
                 // Unstable, and no inverted state was found at the last attempt: try again.
                 s.clone()
@@ -554,6 +569,11 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                     loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
                     break;
                 }
+            } else if !s.converged {
+                // Past the limit point with nowhere to land: the path ends there.
+                loading.push(CyclePoint { step: s, leg: Leg::Loading, inverted });
+                cycle.complete = false;
+                break;
             } else if !retry && from.delta < s.delta {
                 // The first unstable state, held (the bisection's end).
                 loading.push(CyclePoint { step: from, leg: Leg::Loading, inverted: false });
@@ -762,7 +782,7 @@ mod tests {
             steps: (delta_max * 100.0).round() as usize,
             max_cuts: 6,
             bisections: 6,
-            lift_threshold: crate::fem::stability::LIFT_THRESHOLD,
+            criterion: Criterion::LiftThreshold(crate::fem::stability::LIFT_THRESHOLD),
             hold: AdhesiveHold::Free,
             trace_unstable: true,
             unload: true,
@@ -969,7 +989,7 @@ mod tests {
                 steps: 30,
                 max_cuts: 6,
                 bisections: 4,
-                lift_threshold: crate::fem::stability::LIFT_THRESHOLD,
+                criterion: Criterion::LiftThreshold(crate::fem::stability::LIFT_THRESHOLD),
                 hold: AdhesiveHold::Free,
                 trace_unstable: false,
                 unload: true,

@@ -1,14 +1,10 @@
 //! The 8-node axisymmetric solid element of the Chapter 3 model (as ANSYS PLANE183),
-//! geometrically nonlinear (total Lagrangian), compressible neo-Hookean.
+//! geometrically nonlinear (total Lagrangian), with a hyperelastic law of `material`.
 //!
 //! Kinematics: reference coordinates (R, Z), displacements (u_r, u_z); the deformation
 //! gradient has the in-plane block d(r, z)/d(R, Z) and the hoop stretch F_tt = 1 + u_r/R.
-//! Material (chosen over St Venant-Kirchhoff, whose stress softens and vanishes under
-//! strong compression, which an inverting shell pressed on a plate reaches locally):
-//!   W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2,
-//!   P = mu (F - F^-T) + lambda ln J F^-T,
-//! with the Lame constants of E and nu, so that it reduces to linear elasticity with E and
-//! nu at small strain. Nodal forces f_a = Int G_a^T P dV0 and the consistent tangent
+//! Material: `material::Material` (neo-Hookean by default), which reduces to linear
+//! elasticity with E and nu at small strain. Nodal forces f_a = Int G_a^T P dV0 and the consistent tangent
 //! K_ab = Int G_a^T (dP/dF) G_b dV0 (material and geometric parts together), dV0 = 2 pi R
 //! dR dZ, 3 x 3 Gauss points. G_a maps the nodal displacements of node a to the components
 //! (F_rR, F_rZ, F_zR, F_zZ, F_tt).
@@ -18,10 +14,8 @@
 
 use crate::numerics::vectorized_fn;
 
-/// Lame constants (mu, lambda) of Young's modulus and Poisson's ratio.
-pub fn lame(e: f64, nu: f64) -> (f64, f64) {
-    (e / (2.0 * (1.0 + nu)), e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)))
-}
+pub use super::material::lame;
+use super::material::Material;
 
 /// Natural coordinates of the 8 nodes (corners, then mid-sides).
 const NODES: [(f64, f64); 8] =
@@ -117,51 +111,6 @@ fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
     f
 }
 
-/// (i, J) of each component, in 3D indices r = 0, z = 1, theta = 2.
-const INDEX: [(usize, usize); 5] = [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)];
-
-/// J, ln J and F^-1 (3 x 3, block diagonal) of F, or None if J <= 0.
-#[inline(always)]
-fn kinematics(f: &[f64; 5]) -> Option<(f64, [[f64; 3]; 3])> {
-    let det2 = f[0] * f[3] - f[1] * f[2];
-    let j = det2 * f[4];
-    if !(j > 0.0) {
-        return None;
-    }
-    let mut inv = [[0.0; 3]; 3];
-    inv[0][0] = f[3] / det2;
-    inv[0][1] = -f[1] / det2;
-    inv[1][0] = -f[2] / det2;
-    inv[1][1] = f[0] / det2;
-    inv[2][2] = 1.0 / f[4];
-    Some((j.ln(), inv))
-}
-
-/// Neo-Hookean P (components) from F, ln J and F^-1.
-#[inline(always)]
-fn piola(f: &[f64; 5], lnj: f64, inv: &[[f64; 3]; 3], mu: f64, lambda: f64) -> [f64; 5] {
-    // F^-T_iJ = F^-1_Ji.
-    std::array::from_fn(|c| {
-        let (i, jj) = INDEX[c];
-        mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i]
-    })
-}
-
-/// Neo-Hookean P (components) and A = dP/dF (5 x 5), or None if J <= 0.
-#[inline(always)]
-fn stress(f: &[f64; 5], mu: f64, lambda: f64) -> Option<([f64; 5], [[f64; 5]; 5])> {
-    let (lnj, inv) = kinematics(f)?;
-    let p = piola(f, lnj, &inv, mu, lambda);
-    let mut a = [[0.0; 5]; 5];
-    for (c, &(i, jj)) in INDEX.iter().enumerate() {
-        for (d, &(k, l)) in INDEX.iter().enumerate() {
-            let delta = if i == k && jj == l { 1.0 } else { 0.0 };
-            a[c][d] = mu * delta + lambda * inv[jj][i] * inv[l][k] + (mu - lambda * lnj) * inv[l][i] * inv[jj][k];
-        }
-    }
-    Some((p, a))
-}
-
 /// Node b's internal force (r, z) at a Gauss point with stress p (one term of Int G^T P dV0).
 #[inline(always)]
 fn nodal_force(pt: &Point, b: usize, p: &[f64; 5]) -> [f64; 2] {
@@ -172,16 +121,15 @@ fn nodal_force(pt: &Point, b: usize, p: &[f64; 5]) -> [f64; 2] {
 vectorized_fn! {
     /// The internal forces of `forces_and_tangent_of` alone (bitwise the same), without the
     /// tangent: what a line search needs of a trial step.
-    pub fn forces_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> = forces_kernel;
+    pub fn forces_of(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<[f64; 16]> = forces_kernel;
 }
 
 #[inline(always)]
-fn forces_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<[f64; 16]> {
+fn forces_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<[f64; 16]> {
     let mut fint = [0.0; 16];
     for pt in &geometry.0 {
         let f = deformation(pt, u);
-        let (lnj, inv) = kinematics(&f)?;
-        let p = piola(&f, lnj, &inv, mu, lambda);
+        let p = m.piola(&f)?;
         for b in 0..8 {
             let [fr, fz] = nodal_force(pt, b, &p);
             fint[2 * b] += fr;
@@ -192,21 +140,15 @@ fn forces_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -
 }
 
 /// The element's strain energy or None if inverted somewhere.
-pub fn energy(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
-    energy_of(&Geometry::new(x), u, mu, lambda)
+pub fn energy(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], m: Material) -> Option<f64> {
+    energy_of(&Geometry::new(x), u, m)
 }
 
 /// `energy` of an element whose Gauss-point geometry is known.
-pub fn energy_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -> Option<f64> {
+pub fn energy_of(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<f64> {
     let mut w = 0.0;
     for p in &geometry.0 {
-        let f = deformation(p, u);
-        let j = (f[0] * f[3] - f[1] * f[2]) * f[4];
-        if !(j > 0.0) {
-            return None;
-        }
-        let i1: f64 = f.iter().map(|v| v * v).sum();
-        w += p.dv * (0.5 * mu * (i1 - 3.0) - mu * j.ln() + 0.5 * lambda * j.ln().powi(2));
+        w += p.dv * m.energy(&deformation(p, u))?;
     }
     Some(w)
 }
@@ -217,10 +159,9 @@ pub fn energy_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64) -
 pub fn forces_and_tangent(
     x: &[[f64; 2]; 8],
     u: &[[f64; 2]; 8],
-    mu: f64,
-    lambda: f64,
+    m: Material,
 ) -> Option<([f64; 16], [[f64; 16]; 16])> {
-    forces_and_tangent_of(&Geometry::new(x), u, mu, lambda)
+    forces_and_tangent_of(&Geometry::new(x), u, m)
 }
 
 vectorized_fn! {
@@ -231,7 +172,7 @@ vectorized_fn! {
     /// Int G^T A G dV0 is symmetric (A = dP/dF is, W being a potential), so only r >= q is
     /// summed and mirrored.
     #[allow(clippy::type_complexity)]
-    pub fn forces_and_tangent_of(geometry: &Geometry, u: &[[f64; 2]; 8], mu: f64, lambda: f64)
+    pub fn forces_and_tangent_of(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material)
         -> Option<([f64; 16], [[f64; 16]; 16])> = tangent_kernel;
 }
 
@@ -240,14 +181,13 @@ vectorized_fn! {
 fn tangent_kernel(
     geometry: &Geometry,
     u: &[[f64; 2]; 8],
-    mu: f64,
-    lambda: f64,
+    m: Material,
 ) -> Option<([f64; 16], [[f64; 16]; 16])> {
     let mut fint = [0.0; 16];
     let mut k = [[0.0; 16]; 16];
     for pt in &geometry.0 {
         let f = deformation(pt, u);
-        let (p, a) = stress(&f, mu, lambda)?;
+        let (p, a) = m.stress(&f)?;
         let hoop: [f64; 8] = std::array::from_fn(|b| pt.n[b] / pt.radius);
         // ag[q] = (A G)_{., q} dV0, the 5 components of column q.
         let mut ag = [[0.0; 5]; 16];
@@ -283,6 +223,7 @@ fn tangent_kernel(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fem::material::Law;
 
     /// A curved element of a shell section near the axis (r from 0.2).
     fn element() -> [[f64; 2]; 8] {
@@ -319,10 +260,10 @@ mod tests {
 
     #[test]
     fn forces_are_the_energy_gradient_and_the_tangent_their_jacobian() {
-        let (mu, lambda) = lame(1.3, 0.45);
+        let m = Material::new(Law::NeoHookean, 1.3, 0.45);
         let x = element();
         let u = displacement(0.05);
-        let (f, k) = forces_and_tangent(&x, &u, mu, lambda).unwrap();
+        let (f, k) = forces_and_tangent(&x, &u, m).unwrap();
         let h = 1e-6;
         let bump = |q: usize, s: f64| {
             let mut v = u;
@@ -330,15 +271,15 @@ mod tests {
             v
         };
         for q in 0..16 {
-            let fd = (energy(&x, &bump(q, h), mu, lambda).unwrap() - energy(&x, &bump(q, -h), mu, lambda).unwrap())
+            let fd = (energy(&x, &bump(q, h), m).unwrap() - energy(&x, &bump(q, -h), m).unwrap())
                 / (2.0 * h);
             assert!(
                 (fd - f[q]).abs() < 1e-6 * f.iter().map(|v| v.abs()).fold(0.0, f64::max),
                 "f[{q}]: {fd} vs {}",
                 f[q]
             );
-            let (fp, _) = forces_and_tangent(&x, &bump(q, h), mu, lambda).unwrap();
-            let (fm, _) = forces_and_tangent(&x, &bump(q, -h), mu, lambda).unwrap();
+            let (fp, _) = forces_and_tangent(&x, &bump(q, h), m).unwrap();
+            let (fm, _) = forces_and_tangent(&x, &bump(q, -h), m).unwrap();
             for r in 0..16 {
                 let kd = (fp[r] - fm[r]) / (2.0 * h);
                 assert!((kd - k[r][q]).abs() < 1e-5 * k[r][r].abs().max(1.0), "K[{r}][{q}]: {kd} vs {}", k[r][q]);
@@ -350,25 +291,25 @@ mod tests {
     fn the_vectorized_kernels_give_the_baselines_bits() {
         // `forces_and_tangent_of` and `forces_of` run the kernels compiled for AVX2 where the
         // CPU has it; called directly here, the kernels are compiled for the baseline.
-        let (mu, lambda) = lame(1.3, 0.45);
+        let m = Material::new(Law::NeoHookean, 1.3, 0.45);
         let geometry = Geometry::new(&element());
         for scale in [0.0, 0.01, 0.05] {
             let u = displacement(scale);
-            let (f, k) = forces_and_tangent_of(&geometry, &u, mu, lambda).unwrap();
-            let (f0, k0) = tangent_kernel(&geometry, &u, mu, lambda).unwrap();
+            let (f, k) = forces_and_tangent_of(&geometry, &u, m).unwrap();
+            let (f0, k0) = tangent_kernel(&geometry, &u, m).unwrap();
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&f), bits(&f0));
             assert_eq!(bits(k.as_flattened()), bits(k0.as_flattened()));
-            assert_eq!(bits(&forces_of(&geometry, &u, mu, lambda).unwrap()), bits(&f0));
-            assert_eq!(bits(&forces_kernel(&geometry, &u, mu, lambda).unwrap()), bits(&f0));
+            assert_eq!(bits(&forces_of(&geometry, &u, m).unwrap()), bits(&f0));
+            assert_eq!(bits(&forces_kernel(&geometry, &u, m).unwrap()), bits(&f0));
         }
     }
 
     #[test]
     fn rigid_translation_along_the_axis_is_force_free() {
-        let (mu, lambda) = lame(1.3, 0.45);
+        let m = Material::new(Law::NeoHookean, 1.3, 0.45);
         let u = [[0.0, 0.37]; 8];
-        let (f, _) = forces_and_tangent(&element(), &u, mu, lambda).unwrap();
+        let (f, _) = forces_and_tangent(&element(), &u, m).unwrap();
         assert!(f.iter().all(|v| v.abs() < 1e-12), "{f:?}");
     }
 
@@ -378,7 +319,7 @@ mod tests {
         // Forces on the element are then those of sigma_zz = E eps alone: zero net radial
         // force, and the resultant axial force equals E eps times the annulus area.
         let (e, nu) = (1.3, 0.45);
-        let (mu, lambda) = lame(e, nu);
+        let m = Material::new(Law::NeoHookean, e, nu);
         // A rectangular element r in [0.5, 0.7], z in [0, 0.3].
         let x = [[0.5, 0.0], [0.7, 0.0], [0.7, 0.3], [0.5, 0.3], [0.6, 0.0], [0.7, 0.15], [0.6, 0.3], [0.5, 0.15]];
         let eps = 1e-7;
@@ -386,7 +327,7 @@ mod tests {
         for a in 0..8 {
             u[a] = [-nu * eps * x[a][0], eps * x[a][1]];
         }
-        let (f, _) = forces_and_tangent(&x, &u, mu, lambda).unwrap();
+        let (f, _) = forces_and_tangent(&x, &u, m).unwrap();
         let top: f64 = [2usize, 3, 6].iter().map(|&a| f[2 * a + 1]).sum();
         let area = std::f64::consts::PI * (0.7f64.powi(2) - 0.5f64.powi(2));
         assert!((top / (e * eps * area) - 1.0).abs() < 1e-5, "{}", top / (e * eps * area));

@@ -54,9 +54,10 @@ impl Default for Options {
     }
 }
 
-/// The z of the undeformed apex of the outer surface.
+/// The z of the undeformed apex of the outer surface (R + h on a perfect shell): the plate
+/// touches it at delta = 0.
 pub fn apex_z(model: &Model) -> f64 {
-    model.mesh.radius + model.mesh.thickness
+    model.mesh.nodes[model.mesh.outer[0]][1]
 }
 
 /// The free residual at one configuration, with the tangent and the contact state.

@@ -174,6 +174,31 @@ impl ShellMesh {
     pub fn n_nodes(&self) -> usize {
         self.nodes.len()
     }
+
+    /// The apex of the inner surface (on the axis, where an apex force acts).
+    pub fn inner_apex(&self) -> usize {
+        self.axis[0]
+    }
+
+    /// The mesh with an axisymmetric dimple at the apex: every node moved towards the
+    /// sphere's centre by w(s) = `depth` exp(-(s / `width`)^2), s = R phi the arc length from
+    /// the apex along the inner surface (the Gaussian dimple of imperfection-sensitivity
+    /// studies of spherical shells). Nodes stay on the axis and on the base; a zero depth
+    /// leaves the mesh as it is, bit for bit.
+    pub fn with_dimple(mut self, depth: f64, width: f64) -> ShellMesh {
+        if depth == 0.0 {
+            return self;
+        }
+        assert!(width > 0.0, "dimple width must be positive");
+        for x in &mut self.nodes {
+            let [r, z] = *x;
+            let (rho, phi) = (r.hypot(z), r.atan2(z));
+            let s = self.radius * phi / width;
+            let scale = (rho - depth * (-s * s).exp()) / rho;
+            *x = [r * scale, z * scale];
+        }
+        self
+    }
 }
 
 #[cfg(test)]
@@ -211,6 +236,26 @@ mod tests {
             }
         }
         assert_eq!(meridian_elements(15.0, 1.0, 0.1), 240);
+    }
+
+    #[test]
+    fn a_dimple_moves_the_apex_inwards_by_its_depth_and_keeps_the_supports() {
+        let m = ShellMesh::hemisphere(15.0, 1.0, 40, 2, 3.0);
+        assert_eq!(m.clone().with_dimple(0.0, 2.0).nodes, m.nodes);
+        let d = m.clone().with_dimple(0.01, 2.0);
+        assert!((d.nodes[d.outer[0]][1] - (16.0 - 0.01)).abs() < 1e-13);
+        assert!((d.nodes[d.inner_apex()][1] - (15.0 - 0.01)).abs() < 1e-13);
+        assert!(d.axis.iter().all(|&a| d.nodes[a][0] == 0.0) && d.base.iter().all(|&a| d.nodes[a][1] == 0.0));
+        // One width along the meridian the depth has fallen by 1/e (arc length R phi).
+        let (i, phi) = m
+            .outer
+            .iter()
+            .map(|&a| (a, m.nodes[a][0].atan2(m.nodes[a][1])))
+            .min_by(|x, y| (15.0 * x.1 - 2.0).abs().total_cmp(&(15.0 * y.1 - 2.0).abs()))
+            .unwrap();
+        let moved = m.nodes[i][0].hypot(m.nodes[i][1]) - d.nodes[i][0].hypot(d.nodes[i][1]);
+        let want = 0.01 * (-(15.0 * phi / 2.0f64).powi(2)).exp();
+        assert!((moved - want).abs() < 1e-12 * 0.01, "{moved} vs {want} at {phi}");
     }
 
     #[test]

@@ -8,6 +8,7 @@ pub mod critical;
 pub mod cycle;
 pub mod element;
 pub mod indent;
+pub mod material;
 pub mod mesh;
 pub mod stability;
 pub mod system;

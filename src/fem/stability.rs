@@ -37,6 +37,32 @@ use super::system::{Model, TangentSink};
 /// is held against lifting in the stability test.
 pub const LIFT_THRESHOLD: f64 = 0.02;
 
+/// Which states of a path under prescribed plate displacement count as stable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Criterion {
+    /// The tangent of the converged state with every pressed node held (the unilateral
+    /// contact's own tangent at its active set) is positive definite. On an imperfect shell
+    /// (an apex force or a dimple) the weakly pressed interior lifts off in the equilibrium
+    /// itself, and the path loses stability at its limit point in delta, where no
+    /// equilibrium lies beyond: the physical snap-through, with no free parameter. On a
+    /// perfect shell it does not snap before the interior's pressure vanishes.
+    Tangent,
+    /// Only nodes pressed above this fraction of the peak pressure are held, the others
+    /// free to lift (`unilaterally_stable`): a numerical stand-in for the imperfection of a
+    /// perfect shell, whose verdict moves with the threshold.
+    LiftThreshold(f64),
+}
+
+impl Criterion {
+    /// The pressure threshold of `unilaterally_stable`.
+    pub fn threshold(self) -> f64 {
+        match self {
+            Criterion::Tangent => 0.0,
+            Criterion::LiftThreshold(t) => t,
+        }
+    }
+}
+
 /// What resists the lifting of a touching point (g' <= 0) of an adhesive contact in the
 /// stability test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -12,7 +12,8 @@
 // Index loops over local dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{energy_of, forces_and_tangent_of, forces_of, lame, Geometry};
+use super::element::{energy_of, forces_and_tangent_of, forces_of, Geometry};
+use super::material::{Law, Material};
 use super::mesh::ShellMesh;
 use crate::numerics::banded::{Band, BandCholesky, BandLu};
 use anyhow::{anyhow, Result};
@@ -52,8 +53,12 @@ pub enum Base {
 /// A hyperelastic shell section with its supports.
 pub struct Model {
     pub mesh: ShellMesh,
-    pub mu: f64,
-    pub lambda: f64,
+    pub material: Material,
+    /// A dead load (nodal forces, constant in magnitude and direction) on the shell: the
+    /// apex force of an imperfect shell (`apex_force`). Empty: none. Internal forces are
+    /// reported net of it, and the strain energy with its potential -load . u, so that every
+    /// solver sees it.
+    pub dead_load: Vec<f64>,
     /// Constrained dofs (u = prescribed value there; zero for the supports).
     pub fixed: Vec<bool>,
     /// Each element's Gauss-point geometry (it depends only on the mesh).
@@ -256,7 +261,6 @@ impl Stiffness {
 
 impl Model {
     pub fn new(mesh: ShellMesh, e: f64, nu: f64, base: Base) -> Model {
-        let (mu, lambda) = lame(e, nu);
         let mut fixed = vec![false; 2 * mesh.n_nodes()];
         for &a in &mesh.axis {
             fixed[2 * a] = true;
@@ -272,14 +276,39 @@ impl Model {
         let pattern = Arc::new(Pattern::new(&mesh, &fixed));
         Model {
             mesh,
-            mu,
-            lambda,
+            material: Material::new(Law::NeoHookean, e, nu),
+            dead_load: Vec::new(),
             fixed,
             geometry,
             pattern,
             lu_count: Default::default(),
             last: std::sync::Mutex::new(None),
         }
+    }
+
+    /// The model with another hyperelastic law (same E and nu).
+    pub fn with_law(mut self, law: Law) -> Model {
+        self.material.law = law;
+        self
+    }
+
+    /// The model with a point force at the apex of the inner surface, of magnitude `force`
+    /// (units of force, the whole ring), pointing away from the plate (towards -z): the
+    /// perturbing load of commercial FE practice that lets a perfect shell leave its
+    /// flattened branch. A non-positive force leaves the model as it is.
+    pub fn with_apex_force(mut self, force: f64) -> Model {
+        if force > 0.0 {
+            let apex = self.mesh.inner_apex();
+            let mut load = vec![0.0; self.n_dofs()];
+            load[2 * apex + 1] = -force;
+            self.dead_load = load;
+        }
+        self
+    }
+
+    /// Subtracts the dead load from internal forces `f`.
+    fn net_of_load(&self, f: &mut [f64]) {
+        f.iter_mut().zip(&self.dead_load).for_each(|(f, l)| *f -= l);
     }
 
     pub fn n_dofs(&self) -> usize {
@@ -331,7 +360,7 @@ impl Model {
 
     fn assemble_anew(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
         let local = self.per_element(u, ([0.0; 16], [[0.0; 16]; 16]), |geometry, ue| {
-            forces_and_tangent_of(geometry, ue, self.mu, self.lambda)
+            forces_and_tangent_of(geometry, ue, self.material)
         })?;
         let mut f = vec![0.0; self.n_dofs()];
         let mut k = self.zero_stiffness();
@@ -346,31 +375,37 @@ impl Model {
                 }
             }
         }
+        self.net_of_load(&mut f);
         Some((f, k))
     }
 
     /// The internal forces alone (bitwise those of `assemble`), or None if an element is
     /// inverted: a line search's trial steps, most of them rejected, need no tangent.
     pub fn internal_forces(&self, u: &[f64]) -> Option<Vec<f64>> {
-        let local = self.per_element(u, [0.0; 16], |geometry, ue| forces_of(geometry, ue, self.mu, self.lambda))?;
+        let local = self.per_element(u, [0.0; 16], |geometry, ue| forces_of(geometry, ue, self.material))?;
         let mut f = vec![0.0; self.n_dofs()];
         for (el, fe) in self.mesh.elements.iter().zip(&local) {
             Model::scatter_forces(&mut f, el, fe);
         }
+        self.net_of_load(&mut f);
         Some(f)
     }
 
-    /// The stored strain energy (None if an element is inverted).
+    /// The stored strain energy plus the dead load's potential -load . u (None if an
+    /// element is inverted).
     pub fn strain_energy(&self, u: &[f64]) -> Option<f64> {
-        self.mesh
+        let load: f64 = self.dead_load.iter().zip(u).map(|(l, u)| l * u).sum();
+        let stored: Option<f64> = self
+            .mesh
             .elements
             .iter()
             .zip(&self.geometry)
             .map(|(el, geometry)| {
                 let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-                energy_of(geometry, &ue, self.mu, self.lambda)
+                energy_of(geometry, &ue, self.material)
             })
-            .sum()
+            .sum();
+        Some(stored? - load)
     }
 
     /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones).

@@ -4,6 +4,7 @@
 //! state at the same plate displacements where it exists).
 
 use super::fem_map::{MeshStudy, Outcome};
+use super::shell_form::{default_lift_threshold, Imperfection, MaterialLaw, Stability};
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Jump, Leg};
@@ -55,6 +56,12 @@ pub struct ShellParams {
     /// at the apex for the first contact, and at r ~ 0.6 R for the inverted state's ring).
     #[serde(default = "default_grading")]
     pub grading: f64,
+    /// Hyperelastic law: `neo_hookean` (default), `saint_venant_kirchhoff` or `hencky`.
+    #[serde(default, skip_serializing_if = "MaterialLaw::is_default")]
+    pub material: MaterialLaw,
+    /// Imperfection: `{apex_force: F/F_c, dimple: depth/h, width: /sqrt(R h)}` (default none).
+    #[serde(default, skip_serializing_if = "Imperfection::is_none")]
+    pub imperfection: Imperfection,
 }
 
 impl ShellParams {
@@ -71,6 +78,7 @@ impl ShellParams {
         }
         check::at_least(e, "n_thickness", self.n_thickness, 1);
         check::positive(e, "grading", self.grading);
+        self.imperfection.validate(e, "");
     }
 
     /// F R / (E h^3) per unit force.
@@ -89,9 +97,9 @@ impl ShellParams {
         self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0))
     }
 
-    /// The mesh on `n` meridian elements.
+    /// The mesh on `n` meridian elements, with the imperfection's dimple.
     fn mesh_on(&self, n: usize) -> ShellMesh {
-        ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
+        self.imperfection.shape(ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading))
     }
 
     /// The mesh, its meridian resolved for the Lennard-Jones range `g0` unless given.
@@ -135,9 +143,6 @@ impl Kind for FemMesh {
 fn default_penalty() -> f64 {
     1000.0
 }
-fn default_lift_threshold() -> f64 {
-    crate::fem::stability::LIFT_THRESHOLD
-}
 fn default_bisections() -> u32 {
     6
 }
@@ -158,8 +163,11 @@ pub struct IndentParams {
     pub delta_max: f64,
     /// Equal load steps to delta_max (and back).
     pub steps: usize,
-    /// Stability test: contact nodes pressed above this fraction of the peak pressure are
-    /// held against lifting off, the others are free to (default 0.02).
+    /// Stability test: `lift_threshold` (default) or `tangent` (`shell_form::Stability`).
+    #[serde(default, skip_serializing_if = "Stability::is_default")]
+    pub stability: Stability,
+    /// With `stability: lift_threshold`: contact nodes pressed above this fraction of the
+    /// peak pressure are held against lifting off, the others are free to (default 0.02).
     #[serde(default = "default_lift_threshold")]
     pub lift_threshold: f64,
     /// Bisections locating the snap-through in delta (default 6: to steps/64).
@@ -219,7 +227,7 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = Model::new(sh.mesh_on(n), sh.E, sh.nu, base);
+        let model = sh.imperfection.load(Model::new(sh.mesh_on(n), sh.E, sh.nu, base).with_law(sh.material.into()), sh.E);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
@@ -231,7 +239,7 @@ impl IndentParams {
             steps: self.steps,
             max_cuts: 8,
             bisections: self.bisections,
-            lift_threshold: self.lift_threshold,
+            criterion: self.stability.criterion(self.lift_threshold),
             hold: self.hold.into(),
             trace_unstable: unload,
             unload,
@@ -373,7 +381,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 22;
+    const VERSION: u32 = 23;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -414,6 +422,8 @@ impl Kind for FemIndent {
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             // The mesh's share of the force's error (`Cycles::force_error`).
             .with_f64("F_error_bar", rows.iter().map(|r| finite(cycles.force_error(r) * f_bar)).collect())
+            // The compressive contact force alone (F_bar = F_contact_bar + F_adhesive_bar).
+            .with_f64("F_contact_bar", col(&|s| (s.contact.force - s.contact.adhesive) * f_bar))
             .with_f64("F_adhesive_bar", col(&|s| s.contact.adhesive * f_bar))
             .with_f64(
                 "slip_fraction",

@@ -8,6 +8,7 @@
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
 use super::fem::{declared_mesh_error, snap_bracket};
+use super::shell_form::{self, Imperfection, MaterialLaw, Stability};
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::critical::{bracket, probe, retrying};
@@ -104,6 +105,15 @@ pub struct MapModel {
     /// What counts as a snap-through: `instability` (default) or `landing`.
     #[serde(skip_serializing_if = "SnapCriterion::is_default")]
     pub snap: SnapCriterion,
+    /// Stability test: `lift_threshold` (default) or `tangent` (`shell_form::Stability`).
+    #[serde(skip_serializing_if = "Stability::is_default")]
+    pub stability: Stability,
+    /// Hyperelastic law (`shell_form::MaterialLaw`).
+    #[serde(skip_serializing_if = "MaterialLaw::is_default")]
+    pub material: MaterialLaw,
+    /// Imperfection (`shell_form::Imperfection`; default none).
+    #[serde(skip_serializing_if = "Imperfection::is_none")]
+    pub imperfection: Imperfection,
 }
 
 impl Default for MapModel {
@@ -123,6 +133,9 @@ impl Default for MapModel {
             bisections: 5,
             hold: Hold::Free,
             snap: SnapCriterion::Instability,
+            stability: Stability::LiftThreshold,
+            material: MaterialLaw::NeoHookean,
+            imperfection: Imperfection::default(),
         }
     }
 }
@@ -142,6 +155,7 @@ impl MapModel {
         check::at_least(e, "model.steps", self.steps, 1);
         check::in_open(e, "model.delta_max", self.delta_max, 0.0, 1.0, "delta/R");
         check::in_open(e, "model.lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
+        self.imperfection.validate(e, "model.");
     }
 
     fn h(&self, h_over_r: f64) -> f64 {
@@ -160,7 +174,7 @@ impl MapModel {
     /// The shell with `n_meridian` elements along the meridian.
     fn shell_with(&self, h_over_r: f64, n_meridian: usize) -> Model {
         let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), n_meridian, self.n_thickness, self.grading);
-        Model::new(mesh, self.E, self.nu, Base::Clamped)
+        shell_form::model(mesh, self.E, self.nu, Base::Clamped, self.material, &self.imperfection)
     }
 
     /// The mesh is the default one (whose resolution error is declared,
@@ -181,7 +195,7 @@ impl MapModel {
             steps: self.steps,
             max_cuts: 8,
             bisections: self.bisections,
-            lift_threshold: self.lift_threshold,
+            criterion: self.stability.criterion(self.lift_threshold),
             hold: self.hold.into(),
             trace_unstable: false,
             unload,
@@ -224,8 +238,30 @@ pub struct BucklingParams {
     /// CPU time.
     #[serde(default)]
     pub mesh_study: bool,
+    /// The apex force of the imperfection in units of F_c = E h^3 / R (sweepable; default:
+    /// `model.imperfection.apex_force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub apex_force: Option<f64>,
+    /// The dimple depth of the imperfection in units of h (sweepable; default:
+    /// `model.imperfection.dimple`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dimple: Option<f64>,
     #[serde(default)]
     pub model: MapModel,
+}
+
+impl BucklingParams {
+    /// The model with the point's imperfection.
+    fn point_model(&self) -> MapModel {
+        let mut m = self.model.clone();
+        if let Some(a) = self.apex_force {
+            m.imperfection.apex_force = a;
+        }
+        if let Some(d) = self.dimple {
+            m.imperfection.dimple = d;
+        }
+        m
+    }
 }
 
 /// The mesh's share of the errors of F_buckling and W on n meridian elements, from the
@@ -289,10 +325,10 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 20;
+    const VERSION: u32 = 21;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
-    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu"];
+    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
     type Params = BucklingParams;
 
     fn validate(p: &BucklingParams) -> Vec<FieldError> {
@@ -300,13 +336,13 @@ impl Kind for FemBuckling {
         check_h_over_r(&mut e, "h_over_R", p.h_over_R);
         check::non_negative(&mut e, "gamma_over_Eh", p.gamma_over_Eh);
         check::non_negative(&mut e, "mu", p.mu);
-        p.model.validate(&mut e);
+        p.point_model().validate(&mut e);
         e
     }
 
     fn run(p: &BucklingParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let m = &p.model;
+        let m = &p.point_model();
         let n = m.meridian_elements(p.h_over_R);
         // The cycle on `n` meridian elements: (buckled, F, W and its path error, complete),
         // the snap and the cycle.
@@ -347,8 +383,13 @@ impl Kind for FemBuckling {
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
             .with_f64("mu", vec![p.mu])
+            .with_f64("apex_force", vec![m.imperfection.apex_force])
+            .with_f64("dimple", vec![m.imperfection.dimple])
             .with("buckled", ColumnData::Bool(vec![b.is_some()]))
+            // The net plate force (contact minus adhesion) at the snap, and its two parts.
             .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
+            .with_f64("F_contact_buckling_bar", vec![finite(b.map_or(0.0, |j| (j.force_before - j.pull_before) * fb))])
+            .with_f64("F_adhesive_buckling_bar", vec![finite(b.map_or(0.0, |j| j.pull_before * fb))])
             // The bisection's bracket plus the mesh's share.
             .with_f64("F_buckling_error_bar", vec![finite(b.map_or(0.0, |j| (snap_bracket(&j) + f_mesh) * fb))])
             .with_f64("F_buckling_mesh_error_bar", vec![finite(f_mesh * fb)])

@@ -10,6 +10,7 @@ pub mod fit;
 pub mod material;
 pub mod pb;
 pub mod pulloff;
+pub mod shell_form;
 pub mod theory;
 pub mod util;
 

@@ -1,0 +1,141 @@
+//! Parameters of the Chapter 3 shell shared by every `fem.*` kind: its hyperelastic law,
+//! its imperfection and the stability test that decides the snap-through, with the
+//! conversion to the physics' types (`fem::material::Law`, `fem::stability::Criterion`).
+
+use super::check;
+use crate::fem::material::Law;
+use crate::fem::mesh::ShellMesh;
+use crate::fem::stability::{Criterion, LIFT_THRESHOLD};
+use crate::fem::system::Model;
+use crate::pipeline::kind::FieldError;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The hyperelastic law of the shell (`fem::material`): all three reduce to E and nu at
+/// small strain.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum MaterialLaw {
+    /// Compressible neo-Hookean (the default).
+    #[default]
+    NeoHookean,
+    /// St Venant-Kirchhoff (CalculiX's `*ELASTIC` with NLGEOM).
+    SaintVenantKirchhoff,
+    /// Hencky: linear in the logarithmic strain.
+    Hencky,
+}
+
+impl MaterialLaw {
+    pub fn is_default(&self) -> bool {
+        *self == MaterialLaw::NeoHookean
+    }
+}
+
+impl From<MaterialLaw> for Law {
+    fn from(m: MaterialLaw) -> Law {
+        match m {
+            MaterialLaw::NeoHookean => Law::NeoHookean,
+            MaterialLaw::SaintVenantKirchhoff => Law::SaintVenantKirchhoff,
+            MaterialLaw::Hencky => Law::Hencky,
+        }
+    }
+}
+
+fn default_width() -> f64 {
+    1.0
+}
+
+/// An explicit imperfection of the shell: a perturbing point force at the inner apex,
+/// pointing away from the plate, and a Gaussian dimple of the reference shape at the apex
+/// (`fem::mesh::ShellMesh::with_dimple`). Both zero: the perfect shell.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, PartialEq, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct Imperfection {
+    /// Apex force in units of F_c = E h^3 / R (default 0).
+    #[serde(default)]
+    pub apex_force: f64,
+    /// Depth of the dimple in units of h (default 0).
+    #[serde(default)]
+    pub dimple: f64,
+    /// Gaussian radius of the dimple along the meridian, in units of sqrt(R h) (default 1).
+    #[serde(default = "default_width")]
+    pub width: f64,
+}
+
+impl Default for Imperfection {
+    fn default() -> Self {
+        Imperfection { apex_force: 0.0, dimple: 0.0, width: default_width() }
+    }
+}
+
+impl Imperfection {
+    pub fn is_none(&self) -> bool {
+        *self == Imperfection::default()
+    }
+
+    pub fn validate(&self, e: &mut Vec<FieldError>, prefix: &str) {
+        check::non_negative(e, &format!("{prefix}imperfection.apex_force"), self.apex_force);
+        if !(self.dimple.abs() < 0.5) {
+            e.push(FieldError::new(
+                &format!("{prefix}imperfection.dimple"),
+                format!("a dimple deeper than h/2 is not an imperfection, got {} h", self.dimple),
+            ));
+        }
+        check::positive(e, &format!("{prefix}imperfection.width"), self.width);
+    }
+
+    /// `mesh` with the dimple (R and h are the mesh's).
+    pub fn shape(&self, mesh: ShellMesh) -> ShellMesh {
+        let (r, h) = (mesh.radius, mesh.thickness);
+        mesh.with_dimple(self.dimple * h, self.width * (r * h).sqrt())
+    }
+
+    /// `model` with the apex force, for Young's modulus `e`.
+    pub fn load(&self, model: Model, e: f64) -> Model {
+        let (r, h) = (model.mesh.radius, model.mesh.thickness);
+        model.with_apex_force(self.apex_force * e * h.powi(3) / r)
+    }
+}
+
+/// The stability test that decides the snap-through (`fem::stability::Criterion`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum Stability {
+    /// Contact nodes pressed below `lift_threshold` of the peak pressure are free to lift
+    /// (the default: a numerical knob standing in for an imperfection).
+    #[default]
+    LiftThreshold,
+    /// The tangent of the unilateral contact at its active set: the snap is the limit point
+    /// of the (imperfect) shell's path, no free parameter.
+    Tangent,
+}
+
+impl Stability {
+    pub fn is_default(&self) -> bool {
+        *self == Stability::LiftThreshold
+    }
+
+    pub fn criterion(self, lift_threshold: f64) -> Criterion {
+        match self {
+            Stability::LiftThreshold => Criterion::LiftThreshold(lift_threshold),
+            Stability::Tangent => Criterion::Tangent,
+        }
+    }
+}
+
+pub fn default_lift_threshold() -> f64 {
+    LIFT_THRESHOLD
+}
+
+/// The shell model: mesh shaped by the imperfection, law, supports, apex force.
+pub fn model(
+    mesh: ShellMesh,
+    e: f64,
+    nu: f64,
+    base: crate::fem::system::Base,
+    law: MaterialLaw,
+    imperfection: &Imperfection,
+) -> Model {
+    let model = Model::new(imperfection.shape(mesh), e, nu, base).with_law(law.into());
+    imperfection.load(model, e)
+}
