@@ -433,6 +433,8 @@ impl Kind for FemIndent {
                 }),
             )
             .with_f64("p_max_over_E", col(&|s| s.contact.pressure.iter().copied().fold(0.0, f64::max) / sh.E))
+            // The pressure at the apex: zero once the contact disk has become a ring.
+            .with_f64("p_apex_over_E", col(&|s| s.contact.pressure.first().copied().unwrap_or(0.0) / sh.E))
             .with_f64("A_bar", col(&|s| 2.0 * s.contact.area / (std::f64::consts::PI * sh.R * sh.R)))
             .with_f64("contact_radius_over_R", col(&|s| s.contact.radius / sh.R))
             .with_f64("max_penetration_over_h", col(&|s| s.contact.max_penetration / sh.h))
