@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint bench bench-gamma-c
+.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell
 
 build:
 	$(CARGO) build
@@ -28,6 +28,13 @@ schema: build
 lint:
 	$(CARGO) fmt --check
 	$(CARGO) clippy --all-targets -- -D warnings
+
+# The Chapter 3 shell against CalculiX (Debian's calculix-ccx; a few minutes): the same
+# mesh, St Venant-Kirchhoff law, apex force and penalty; prints the force path and the snap of
+# both (docs/shell.md, "Validation against CalculiX").
+validate-shell: build
+	@command -v ccx >/dev/null 2>&1 || { echo "validate-shell needs CalculiX: apt-get install calculix-ccx" >&2; exit 1; }
+	python3 validation/calculix/shell.py --out target/validate-shell --repro target/debug/repro
 
 clean-cache:
 	rm -rf cache
