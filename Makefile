@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell
+.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell verify
 
 build:
 	$(CARGO) build
@@ -21,6 +21,16 @@ test:
 	else \
 		echo "make test: SLURM executor tests skipped (need root and Debian's slurm-wlm and munge; .ci/run installs them)"; \
 	fi
+
+# Every committed figure is what the code produces: the pipeline regenerated from an empty
+# cache into target/artifacts (figures, tables, the run report), then compared with the
+# committed figures/ (SVGs byte for byte, Parquet tables value by value).
+ARTIFACTS ?= target/artifacts
+verify: build
+	rm -rf $(ARTIFACTS)
+	$(CARGO) run --quiet -- run $(PIPELINE) -q --cache $(ARTIFACTS)/cache --figures $(ARTIFACTS)/figures \
+		--tables $(ARTIFACTS)/tables --report $(ARTIFACTS)/run.json
+	$(CARGO) run --quiet -- verify $(ARTIFACTS)/figures figures
 
 schema: build
 	$(CARGO) run --quiet -- schema > pipelines/schema.json

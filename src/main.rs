@@ -136,6 +136,21 @@ enum Command {
     Schema,
     /// List the stage kinds with their code versions.
     Kinds,
+    /// Check that the figures and tables of a run equal the reference ones (default: the
+    /// committed `figures/`): SVGs byte for byte, Parquet tables value by value (timing
+    /// columns aside). Exit 0 if all equal, 1 if any differs (each named, with its first
+    /// difference).
+    Verify {
+        /// The folder the run published into (`repro run --figures DIR`).
+        produced: PathBuf,
+        /// The reference folder.
+        #[arg(default_value = "figures")]
+        reference: PathBuf,
+        /// Relative tolerance for numbers (in tables and in SVG coordinates), for
+        /// floating-point differences across platforms; 0 (the default): exact.
+        #[arg(long, default_value_t = 0.0)]
+        rel_tol: f64,
+    },
     /// Print a published Parquet table (or some of its columns) as text.
     Show {
         /// The Parquet file (tables/<stage>.parquet or figures/<figure>.parquet).
@@ -365,6 +380,20 @@ fn main() -> ExitCode {
                 }
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Verify { produced, reference, rel_tol } => {
+            let v = repro::pipeline::verify::verify(&produced, &reference, rel_tol)?;
+            for (file, d) in &v.differ {
+                println!("DIFFERS {}: {d}", file.display());
+            }
+            println!(
+                "repro verify: {} equal, {} differ, {} in {} not produced (not checked)",
+                v.equal.len(),
+                v.differ.len(),
+                v.unchecked.len(),
+                reference.display()
+            );
+            Ok(if v.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
         }
         Command::Kinds => {
             for k in registry.iter() {

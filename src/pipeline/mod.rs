@@ -14,3 +14,4 @@ pub mod schema;
 pub mod slurm;
 pub mod spec;
 pub mod table;
+pub mod verify;
