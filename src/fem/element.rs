@@ -156,11 +156,7 @@ pub fn energy_of(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<
 /// Internal forces (16: node a's r then z) and tangent (16 x 16), or None if the element is
 /// inverted at a Gauss point (the caller cuts the step).
 #[allow(clippy::type_complexity)]
-pub fn forces_and_tangent(
-    x: &[[f64; 2]; 8],
-    u: &[[f64; 2]; 8],
-    m: Material,
-) -> Option<([f64; 16], [[f64; 16]; 16])> {
+pub fn forces_and_tangent(x: &[[f64; 2]; 8], u: &[[f64; 2]; 8], m: Material) -> Option<([f64; 16], [[f64; 16]; 16])> {
     forces_and_tangent_of(&Geometry::new(x), u, m)
 }
 
@@ -178,11 +174,7 @@ vectorized_fn! {
 
 #[inline(always)]
 #[allow(clippy::type_complexity)]
-fn tangent_kernel(
-    geometry: &Geometry,
-    u: &[[f64; 2]; 8],
-    m: Material,
-) -> Option<([f64; 16], [[f64; 16]; 16])> {
+fn tangent_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<([f64; 16], [[f64; 16]; 16])> {
     let mut fint = [0.0; 16];
     let mut k = [[0.0; 16]; 16];
     for pt in &geometry.0 {
@@ -271,8 +263,7 @@ mod tests {
             v
         };
         for q in 0..16 {
-            let fd = (energy(&x, &bump(q, h), m).unwrap() - energy(&x, &bump(q, -h), m).unwrap())
-                / (2.0 * h);
+            let fd = (energy(&x, &bump(q, h), m).unwrap() - energy(&x, &bump(q, -h), m).unwrap()) / (2.0 * h);
             assert!(
                 (fd - f[q]).abs() < 1e-6 * f.iter().map(|v| v.abs()).fold(0.0, f64::max),
                 "f[{q}]: {fd} vs {}",

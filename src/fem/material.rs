@@ -141,9 +141,8 @@ impl Material {
                 for (c, &(i, jj)) in INDEX.iter().enumerate() {
                     for (d, &(k, l)) in INDEX.iter().enumerate() {
                         let delta = if i == k && jj == l { 1.0 } else { 0.0 };
-                        a[c][d] = mu * delta
-                            + lambda * inv[jj][i] * inv[l][k]
-                            + (mu - lambda * lnj) * inv[l][i] * inv[jj][k];
+                        a[c][d] =
+                            mu * delta + lambda * inv[jj][i] * inv[l][k] + (mu - lambda * lnj) * inv[l][i] * inv[jj][k];
                     }
                 }
                 Some((p, a))
@@ -158,9 +157,8 @@ impl Material {
                     for (d, &(k, l)) in INDEX.iter().enumerate() {
                         let dik = if i == k { 1.0 } else { 0.0 };
                         let djl = if jj == l { 1.0 } else { 0.0 };
-                        a[c][d] = dik * s[jj][l]
-                            + lambda * g[i][jj] * g[k][l]
-                            + mu * (b(i, k) * djl + g[i][l] * g[k][jj]);
+                        a[c][d] =
+                            dik * s[jj][l] + lambda * g[i][jj] * g[k][l] + mu * (b(i, k) * djl + g[i][l] * g[k][jj]);
                     }
                 }
                 Some((components(&p), a))
@@ -340,7 +338,8 @@ mod tests {
         let (d1, d2) = (3.0f64, 0.7f64);
         let m = [c * c * d1 + s * s * d2, c * s * (d1 - d2), s * s * d1 + c * c * d2];
         let (l, _) = log_sym2(m[0], m[1], m[2]).unwrap();
-        let expect = [c * c * d1.ln() + s * s * d2.ln(), c * s * (d1.ln() - d2.ln()), s * s * d1.ln() + c * c * d2.ln()];
+        let expect =
+            [c * c * d1.ln() + s * s * d2.ln(), c * s * (d1.ln() - d2.ln()), s * s * d1.ln() + c * c * d2.ln()];
         for k in 0..3 {
             assert!((l[k] - expect[k]).abs() < 1e-14, "{k}: {} vs {}", l[k], expect[k]);
         }

@@ -171,7 +171,8 @@ fn clip(s: &str) -> String {
 }
 
 fn compare_svg(produced: &Path, reference: &Path, rel_tol: f64) -> Option<Difference> {
-    let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| Difference::Unreadable(format!("{}: {e}", p.display())));
+    let read =
+        |p: &Path| std::fs::read_to_string(p).map_err(|e| Difference::Unreadable(format!("{}: {e}", p.display())));
     let (a, b) = match (read(produced), read(reference)) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => return Some(e),
@@ -223,12 +224,7 @@ pub fn compare_frames(a: &DataFrame, b: &DataFrame, rel_tol: f64) -> Option<Diff
                     AnyValue::Float64(f) => format!("{f:?}"),
                     v => v.to_string(),
                 };
-                return Some(Difference::Value {
-                    column: name.clone(),
-                    row,
-                    produced: show(&x),
-                    reference: show(&y),
-                });
+                return Some(Difference::Value { column: name.clone(), row, produced: show(&x), reference: show(&y) });
             }
         }
     }

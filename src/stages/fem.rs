@@ -227,7 +227,8 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = sh.imperfection.load(Model::new(sh.mesh_on(n), sh.E, sh.nu, base).with_law(sh.material.into()), sh.E);
+        let model =
+            sh.imperfection.load(Model::new(sh.mesh_on(n), sh.E, sh.nu, base).with_law(sh.material.into()), sh.E);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
