@@ -358,7 +358,8 @@ fn axis_label(v: f64, log: bool, span: f64) -> String {
     } else if v.abs() < 1e-9 * span {
         "0".into()
     } else {
-        format_number(v)
+        // Rounded to 12 significant digits first: a tick at 3 x 5e-6 is 1.5000000000000002e-5.
+        format_number(format!("{v:.11e}").parse().unwrap_or(v))
     }
 }
 
@@ -543,7 +544,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 10;
+    const VERSION: u32 = 11;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
@@ -666,6 +667,14 @@ pub fn register(r: &mut crate::pipeline::kind::Registry) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn linear_tick_labels_carry_no_rounding_noise() {
+        assert_eq!(axis_label(3.0 * 5e-6, false, 2e-5), "1.5e-5");
+        assert_eq!(axis_label(0.1 + 0.2, false, 1.0), "0.3");
+        assert_eq!(axis_label(-2.2e-17, false, 1.0), "0");
+        assert_eq!(axis_label(250.0, false, 1000.0), "250");
+    }
 
     fn layer(y: &str, color: Option<usize>) -> DataLayer {
         DataLayer {
