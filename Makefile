@@ -60,7 +60,7 @@ bench-gamma-c:
 # Run time against error (pipelines/bench.yaml: figures/bench_bem.svg, bench_bem24.svg, bench_fem.svg, bench_pulloff.svg and
 # tables/pareto_*.parquet) on an empty cache so that every wall time is measured, the full
 # stress grid (pipelines/stress.yaml: tables/stress_summary.parquet; its lambda = 30 point
-# alone takes about 9 min on 2 cores, measured in session 14; everything else about 2 min), then the
+# alone takes about 9 min on 2 cores; everything else about 2 min), then the
 # micro-benchmarks and the orchestrator's scale benchmark.
 bench:
 	$(CARGO) build --release
