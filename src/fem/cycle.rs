@@ -351,8 +351,8 @@ fn press_and_withdraw(model: &Model, plate: &Plate, e: f64, step: f64) -> Option
 /// `plate`: the descent needs a potential). None if neither converges.
 ///
 /// Measured: without this, the start of h/R = 0.1, mu = 0, gamma/(E h) = 0.03 was a saddle
-/// (r/R 0.430, unstable even with every contact node held) with the sparse LU of session 11
-/// and a minimum (r/R 0.419) with the band LU of session 12; the loading from the saddle
+/// (r/R 0.430, unstable even with every contact node held) with a sparse LU
+/// and a minimum (r/R 0.419) with the band LU; the loading from the saddle
 /// "snapped" at delta/R = 3e-4, which decided gamma_c, so the map moved with the rounding.
 fn stable_or_descend(model: &Model, plate: &Plate, e: f64, trial: Step, from: &[f64]) -> Option<Step> {
     if !trial.converged {

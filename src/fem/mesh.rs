@@ -49,10 +49,10 @@ pub const MERIDIAN_ELEMENTS_PER_G0: f64 = 1.5;
 pub const DEFAULT_MESH_REL_ERROR: f64 = 0.005;
 
 /// Relative error of F_buckling on the default mesh with friction `mu`: friction converges
-/// more slowly in the mesh. Measured at h/R = 0.06 (R = 15), gamma/(E h) = 1e-3 (session 15,
+/// more slowly in the mesh. Measured at h/R = 0.06 (R = 15), gamma/(E h) = 1e-3 (
 /// `fem.buckling` with `model: {n_meridian: 240}` and 480): F_bar 15.246 / 15.097 at mu = 1
 /// and 23.084 / 22.875 at mu = 1.5, so at second order 1.3 % and 1.2 % for 240 elements;
-/// session 8: 15.29 / 15.10 / 15.09 (240 / 320 / 480) at mu = 1, gamma/(E h) = 2.2e-3. Hence
+/// and 15.29 / 15.10 / 15.09 (240 / 320 / 480) at mu = 1, gamma/(E h) = 2.2e-3. Hence
 /// `DEFAULT_MESH_REL_ERROR` (measured up to mu = 0.5) rising linearly to 1.3 % at mu = 1,
 /// and 1.3 % beyond (not measured past mu = 1.5).
 pub fn default_mesh_rel_error(mu: f64) -> f64 {
