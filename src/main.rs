@@ -305,10 +305,14 @@ fn main() -> ExitCode {
                 );
             };
             let mut yaml = String::new();
+            let mut seen = std::collections::BTreeSet::new();
             for p in &params {
                 let Some((name, value)) = p.split_once('=') else {
                     return Err(UsageError(format!("`{p}`: parameters are NAME=VALUE")).into());
                 };
+                if !seen.insert(name) {
+                    return Err(UsageError(format!("parameter `{name}` is given twice")).into());
+                }
                 yaml.push_str(&format!("{name}: {value}\n"));
             }
             let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
@@ -317,7 +321,11 @@ fn main() -> ExitCode {
                 UsageError(
                     errors
                         .iter()
-                        .map(|e| format!("parameter `{}`: {}", e.path, e.message))
+                        .map(|e| match e.path.as_str() {
+                            // A missing field is reported at the root: name the kind instead.
+                            "" => format!("{kind}: {} (`repro kinds` lists the kinds)", e.message),
+                            path => format!("parameter `{path}`: {}", e.message),
+                        })
                         .collect::<Vec<_>>()
                         .join("; "),
                 )

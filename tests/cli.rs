@@ -1,4 +1,4 @@
-//! The smaller commands: dag, kinds, schema, and a missing pipeline file.
+//! The smaller commands: dag, kinds, schema, point, and a missing pipeline file.
 
 mod common;
 use common::{sleep_pipeline, Scratch};
@@ -91,4 +91,20 @@ fn show_csv_prints_every_digit_and_quotes_what_needs_it() {
     assert!(rows.iter().all(|r| r[3].starts_with("theory.persson@v")), "{text}");
     let aligned = String::from_utf8(s.repro(&["show", "tables/mu.parquet", "--columns", "mu_star"]).stdout).unwrap();
     assert!(!aligned.contains(','), "{aligned}");
+}
+
+#[test]
+fn point_rejects_a_repeated_parameter_and_names_the_kind_of_a_missing_one() {
+    let s = Scratch::new("point-args");
+    let out = s.repro(&["point", "util.sleep", "x=1", "x=2"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("parameter `x` is given twice"), "{err}");
+    let out = s.repro(&["point", "bem.sweep"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bem.sweep: missing field `lambda`") && !err.contains("parameter ``"), "{err}");
+    // A well-formed call still runs.
+    let out = s.repro(&["point", "util.sleep", "x=1"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
