@@ -165,3 +165,25 @@ fn a_pipeline_cannot_name_files_outside_the_output_directories() {
     let s = Scratch::new("confine-parent");
     assert!(!s.dir.parent().unwrap().join("escape.parquet").exists());
 }
+
+#[test]
+fn a_second_yaml_document_is_rejected_where_it_starts() {
+    let stage = "stages:\n  - name: a\n    kind: util.sleep\n    params: {x: 1}\n";
+    let err = rejected("two-docs", &format!("---\n# one\n{stage}---\nstages:\n  - name: b\n    kind: nope\n"));
+    assert!(err.contains("p.yaml:7:1: error:") && err.contains("one YAML document"), "{err}");
+    let err = rejected("two-docs-end", &format!("{stage}...\n{stage}"));
+    assert!(err.contains("p.yaml:5:1: error:"), "{err}");
+}
+
+#[test]
+fn input_that_is_not_utf8_is_located_at_its_first_bad_byte() {
+    let s = Scratch::new("not-utf8");
+    let mut bytes = b"stages:\n  - name: a\n    kind: util.sl".to_vec();
+    bytes.push(0xff);
+    bytes.extend_from_slice(b"eep\n");
+    std::fs::write(s.path("p.yaml"), bytes).unwrap();
+    let out = s.repro(&["run", "p.yaml", "-q"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("p.yaml:3:18: error:") && err.contains("not UTF-8 (invalid byte at offset 37)"), "{err}");
+}

@@ -127,10 +127,21 @@ impl Pipeline {
 /// Reads and validates a pipeline file.
 pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let bytes = std::fs::read(path).map_err(|e| {
         InvalidPipeline(vec![Diagnostic {
             location: Location { file: file.clone(), line: 0, column: 0 },
             message: format!("cannot read the pipeline file: {e}"),
+        }])
+    })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        // Located at the first invalid byte.
+        let at = e.utf8_error().valid_up_to();
+        let before = &e.as_bytes()[..at];
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let column = at - before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+        InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.clone(), line, column },
+            message: format!("the pipeline file is not UTF-8 (invalid byte at offset {at})"),
         }])
     })?;
     parse(&file, &text, registry)
@@ -214,6 +225,26 @@ fn load_error(file: &str, e: marked_yaml::LoadError) -> Diagnostic {
     Diagnostic { location, message }
 }
 
+/// The line (1-based) where a second YAML document starts: a `---` or `...` marker after
+/// the first document's content (a `---` before any content opens the first document).
+fn second_document(text: &str) -> Option<usize> {
+    let mut content = false;
+    for (i, line) in text.lines().enumerate() {
+        let marker = |m: &str| line == m || line.starts_with(&format!("{m} ")) || line.starts_with(&format!("{m}\t"));
+        if marker("---") || marker("...") {
+            if content {
+                return Some(i + 1);
+            }
+            continue;
+        }
+        let t = line.trim_start();
+        if !t.is_empty() && !t.starts_with('#') {
+            content = true;
+        }
+    }
+    None
+}
+
 fn strip_marker(s: &str) -> String {
     // marked_yaml prefixes messages with its own marker; we print ours.
     match s.split_once(": ") {
@@ -224,6 +255,12 @@ fn strip_marker(s: &str) -> String {
 
 /// Parses pipeline text (exposed for tests).
 pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    if let Some(line) = second_document(text) {
+        return Err(InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.to_string(), line, column: 1 },
+            message: "a pipeline file holds one YAML document; a second one starts here".to_string(),
+        }]));
+    }
     let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
     let root = marked_yaml::parse_yaml_with_options(0, text, options)
         .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
