@@ -528,7 +528,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 15;
+    const VERSION: u32 = 16;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     type Params = ProfileParams;
@@ -584,6 +584,7 @@ impl Kind for FemProfile {
                     t.contact.push(surface == 0 && s.contact.active[i]);
                     t.inverted.push(state.inverted);
                     t.force.push(finite(s.contact.force * f_bar));
+                    t.contact_force.push(finite((s.contact.force - s.contact.adhesive) * f_bar));
                     t.force_error.push(force_error);
                 }
             }
@@ -601,6 +602,8 @@ impl Kind for FemProfile {
             .with("inverted", ColumnData::Bool(t.inverted))
             // The state's plate force and the mesh's share of its error (`fem.indent`'s).
             .with_f64("F_bar", t.force)
+            // The compressive contact force alone (F_bar less the adhesive pull).
+            .with_f64("F_contact_bar", t.contact_force)
             .with_f64("F_error_bar", t.force_error)
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); rows])
             .into())
@@ -624,6 +627,7 @@ struct ProfileRows {
     contact: Vec<bool>,
     inverted: Vec<bool>,
     force: Vec<f64>,
+    contact_force: Vec<f64>,
     force_error: Vec<f64>,
 }
 
