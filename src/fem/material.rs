@@ -107,11 +107,7 @@ impl Material {
         match self.law {
             Law::NeoHookean => {
                 let (lnj, inv) = kinematics(f)?;
-                // F^-T_iJ = F^-1_Ji.
-                Some(std::array::from_fn(|c| {
-                    let (i, jj) = INDEX[c];
-                    mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i]
-                }))
+                Some(neo_hookean_piola(f, lnj, &inv, mu, lambda))
             }
             Law::SaintVenantKirchhoff => {
                 kinematics(f)?;
@@ -137,7 +133,7 @@ impl Material {
         match self.law {
             Law::NeoHookean => {
                 let (lnj, inv) = kinematics(f)?;
-                let p = self.piola(f)?;
+                let p = neo_hookean_piola(f, lnj, &inv, mu, lambda);
                 for (c, &(i, jj)) in INDEX.iter().enumerate() {
                     for (d, &(k, l)) in INDEX.iter().enumerate() {
                         let delta = if i == k && jj == l { 1.0 } else { 0.0 };
@@ -216,6 +212,16 @@ impl Material {
             }
         }
     }
+}
+
+/// Neo-Hookean P from F, ln J and F^-1 (F^-T_iJ = F^-1_Ji), kinematics computed once by
+/// the caller (the tangent kernel's hot path).
+#[inline(always)]
+fn neo_hookean_piola(f: &[f64; 5], lnj: f64, inv: &[[f64; 3]; 3], mu: f64, lambda: f64) -> [f64; 5] {
+    std::array::from_fn(|c| {
+        let (i, jj) = INDEX[c];
+        mu * (f[c] - inv[jj][i]) + lambda * lnj * inv[jj][i]
+    })
 }
 
 /// Green-Lagrange strain E = (F^T F - I)/2.

@@ -4,7 +4,7 @@
 //! state at the same plate displacements where it exists).
 
 use super::fem_map::{MeshStudy, Outcome};
-use super::shell_form::{default_lift_threshold, Imperfection, MaterialLaw, Stability};
+use super::shell_form::{self, default_lift_threshold, Imperfection, MaterialLaw, Stability};
 use super::{check, finite};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Jump, Leg};
@@ -97,14 +97,14 @@ impl ShellParams {
         self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0))
     }
 
-    /// The mesh on `n` meridian elements, with the imperfection's dimple.
+    /// The mesh on `n` meridian elements, before the imperfection's dimple.
     fn mesh_on(&self, n: usize) -> ShellMesh {
-        self.imperfection.shape(ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading))
+        ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
     }
 
     /// The mesh, its meridian resolved for the Lennard-Jones range `g0` unless given.
     fn mesh(&self, g0: f64) -> ShellMesh {
-        self.mesh_on(self.meridian(g0))
+        self.imperfection.shape(self.mesh_on(self.meridian(g0)))
     }
 }
 
@@ -227,8 +227,7 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model =
-            sh.imperfection.load(Model::new(sh.mesh_on(n), sh.E, sh.nu, base).with_law(sh.material.into()), sh.E);
+        let model = shell_form::model(sh.mesh_on(n), sh.E, sh.nu, base, sh.material, &sh.imperfection);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
