@@ -15,6 +15,8 @@ const EXIT_FAILED_TASKS: u8 = 1;
 const EXIT_INVALID_INPUT: u8 = 2;
 const EXIT_CACHE_BUSY: u8 = 3;
 const EXIT_ERROR: u8 = 4;
+/// Every task ran, and an expectation that held before no longer holds (a thesis claim).
+const EXIT_REGRESSION: u8 = 5;
 
 const DEFAULT_PIPELINE: &str = "pipelines/thesis.yaml";
 
@@ -252,7 +254,19 @@ fn main() -> ExitCode {
             for f in &rep.published {
                 eprintln!("  wrote {f}");
             }
-            Ok(if rep.any_failed() { ExitCode::from(EXIT_FAILED_TASKS) } else { ExitCode::SUCCESS })
+            for n in &rep.notes {
+                eprintln!("{n}");
+            }
+            for r in &rep.regressions {
+                eprintln!("repro: regression: {r}");
+            }
+            Ok(if rep.any_failed() {
+                ExitCode::from(EXIT_FAILED_TASKS)
+            } else if !rep.regressions.is_empty() {
+                ExitCode::from(EXIT_REGRESSION)
+            } else {
+                ExitCode::SUCCESS
+            })
         }
         Command::Worker { cache, list, index } => {
             let index = match index {

@@ -61,6 +61,13 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
             json!({"lambda": 0.5, "W": 1.0, "k": 0.1, "V0_range": [0.1, 10.0], "grid": 4, "log_tol": 0.2, "n": 40, "half_length": 5.0}),
         ),
         (
+            "claim",
+            json!({"id": "c", "source": "Fig. 1", "statement": "s", "expect": "reproduced",
+                   "quantity": {"from": "input", "y": "b", "x": "a", "filter": {"g": 2}, "aggregate": "slope"},
+                   "thesis": {"value": 0.0, "abs_tol": 0.1}, "independent": {"value": 0.0, "source": "flat"}}),
+        ),
+        ("claims", json!({"claims": ["claim_row", "claim_row"]})),
+        (
             "fit.powerlaw",
             json!({"from": "input", "x": "a", "y": "b", "x_min": 0.1, "x_max": 10, "group_by": "g", "expected_slope": 0.5}),
         ),
@@ -106,6 +113,10 @@ fn reference_inputs() -> BTreeMap<String, Table> {
         .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]))
         .with("found", repro::pipeline::table::ColumnData::Bool(vec![true, true, true, true]))
         .with_f64("error_estimate", vec![0.001, 0.002, 0.0005, 0.001]);
+    // A claim's verdict for claims: recorded as reproduced, now differing.
+    let text = |v: &str| repro::pipeline::table::ColumnData::Str(vec![v.to_string()]);
+    let claim_row =
+        Table::new().with("id", text("c")).with("verdict", text("differs")).with("expected", text("reproduced"));
     // Two solver configurations and a reference for bench.pareto.
     let timed = |v: [f64; 2], t: f64| {
         Table::new().with_f64("x", vec![1.0, 2.0]).with_f64("v", v.to_vec()).with_f64("wall_time_s", vec![t, t])
@@ -118,6 +129,7 @@ fn reference_inputs() -> BTreeMap<String, Table> {
         ("input".to_string(), input),
         ("rolling".to_string(), rolling),
         ("gc".to_string(), gc),
+        ("claim_row".to_string(), claim_row),
     ])
 }
 
@@ -206,6 +218,8 @@ const NOT_SOLVERS: &[&str] = &[
     "fem.mesh",
     "fit.powerlaw",
     "figure",
+    "claim",
+    "claims",
 ];
 
 #[test]

@@ -601,8 +601,17 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
             cache.write_manifest(&pid, &p.stages[*si].name, m)?;
         }
         for &si in &order {
-            if let Some(StageState::Done { points, times, .. }) = states.get(&si) {
+            if let Some(StageState::Done { points, times, .. }) = states.get(&si).filter(|_| p.stages[si].publish) {
                 report.published.extend(publish_stage(p, &p.stages[si], registry, points, times, opts)?);
+            }
+        }
+    }
+    for &si in &order {
+        if let Some(StageState::Done { points, .. }) = states.get(&si) {
+            for (_, o) in points {
+                report.notes.extend(o.notes.iter().cloned());
+                let stage = &p.stages[si].name;
+                report.regressions.extend(o.regressions.iter().map(|r| format!("{stage}: {r}")));
             }
         }
     }

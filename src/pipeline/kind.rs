@@ -28,17 +28,25 @@ impl<'a> Inputs<'a> {
     }
 }
 
-/// What a task produces: a table and, for figures, text artifacts keyed by file extension.
+/// What a task produces: a table and, for figures, text artifacts keyed by file extension;
+/// a task that checks something may add lines for the end of the run (`notes`) and
+/// expectations that no longer hold (`regressions`: the run then exits with its own code).
+/// Both are empty for most kinds and then not serialised (an output's bytes, and so its
+/// hash, do not change).
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Output {
     pub table: Table,
     #[serde(default)]
     pub artifacts: BTreeMap<String, String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub regressions: Vec<String>,
 }
 
 impl From<Table> for Output {
     fn from(table: Table) -> Self {
-        Output { table, artifacts: BTreeMap::new() }
+        Output { table, ..Default::default() }
     }
 }
 

@@ -70,6 +70,12 @@ pub struct RunReport {
     pub tasks: Vec<TaskRecord>,
     /// Files written (or rewritten) by this run.
     pub published: Vec<String>,
+    /// What the tasks of the run's stages report for its end (`kind::Output::notes`), and
+    /// the expectations that stopped holding (`kind::Output::regressions`), with their stage.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub regressions: Vec<String>,
 }
 
 impl RunReport {

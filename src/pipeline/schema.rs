@@ -92,7 +92,8 @@ pub fn pipeline_schema(registry: &Registry) -> Value {
                 "kind": {"const": prefix},
                 "description": {"type": "string"},
                 "params": {"$ref": format!("#/$defs/params.{prefix}")},
-                "needs": {"type": "array", "items": {"type": "string"}}
+                "needs": {"type": "array", "items": {"type": "string"}},
+                "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"}
             },
             "required": ["name", "kind"],
             "additionalProperties": false

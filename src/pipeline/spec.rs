@@ -106,6 +106,9 @@ pub struct Stage {
     /// The stages whose declared ranges a `shown` sweep of this stage samples (not inputs:
     /// they read this stage; their ranges only fix its points).
     pub ranges_from: Vec<String>,
+    /// Its table is written to the tables folder (`publish: false`: an intermediate, kept in
+    /// the cache for the stages that need it).
+    pub publish: bool,
     pub location: Location,
 }
 
@@ -319,7 +322,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         cx.err(cx.loc(node), "a stage must be a mapping with `name`, `kind`, `params` and `needs`");
         return None;
     };
-    check_keys(cx, map, &["name", "kind", "params", "needs", "description"], "a stage");
+    check_keys(cx, map, &["name", "kind", "params", "needs", "description", "publish"], "a stage");
     let name = match map.get_node("name") {
         Some(Node::Scalar(s)) if is_valid_name(s.as_str()) => s.as_str().to_string(),
         Some(n) => {
@@ -343,6 +346,15 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         }
     };
     let kind_name = kind_node.as_scalar().unwrap().as_str().to_string();
+    let publish = match map.get_node("publish") {
+        None => true,
+        Some(Node::Scalar(s)) if s.as_str() == "true" => true,
+        Some(Node::Scalar(s)) if s.as_str() == "false" => false,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `publish` must be true or false"));
+            true
+        }
+    };
     let mut needs = Vec::new();
     let mut need_locations = Vec::new();
     match map.get_node("needs") {
@@ -421,6 +433,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             points: checked,
             adaptive,
             ranges_from,
+            publish,
             location: mapping_location(cx.file, map),
         },
         need_locations,

@@ -3,6 +3,7 @@
 
 pub mod bem;
 pub mod bench;
+pub mod claim;
 pub mod fem;
 pub mod fem_map;
 pub mod figure;
@@ -24,6 +25,7 @@ pub fn registry() -> Registry {
     fem::register(&mut r);
     fem_map::register(&mut r);
     bench::register(&mut r);
+    claim::register(&mut r);
     pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
