@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell verify
+.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell verify report report-check
 
 build:
 	$(CARGO) build
@@ -31,6 +31,20 @@ verify: build
 	$(CARGO) run --quiet -- run $(PIPELINE) -q --cache $(ARTIFACTS)/cache --figures $(ARTIFACTS)/figures \
 		--tables $(ARTIFACTS)/tables --report $(ARTIFACTS)/run.json
 	$(CARGO) run --quiet -- verify $(ARTIFACTS)/figures figures
+
+# The reproduction report of the last run: report/index.html (open it from disk).
+report: build
+	$(CARGO) run --quiet -- report $(PIPELINE)
+
+# The report of `make verify`'s run, loaded in headless Chromium (Debian's chromium, npm's
+# playwright-core): every figure and claim rendered, no request left the page, a screenshot
+# in $(ARTIFACTS)/report/screenshot.png.
+report-check: build
+	$(CARGO) run --quiet -- report $(PIPELINE) --cache $(ARTIFACTS)/cache --figures $(ARTIFACTS)/figures \
+		--tables $(ARTIFACTS)/tables --out $(ARTIFACTS)/report/index.html
+	mkdir -p target/report-check && cp ci/report_check.mjs target/report-check/
+	cd target/report-check && { [ -d node_modules/playwright-core ] || npm install --silent --no-save --no-package-lock playwright-core@1; }
+	node target/report-check/report_check.mjs $(ARTIFACTS)/report/index.html $(PIPELINE) $(ARTIFACTS)/report/screenshot.png
 
 schema: build
 	$(CARGO) run --quiet -- schema > pipelines/schema.json

@@ -9,6 +9,7 @@ pub mod bem;
 pub mod fem;
 pub mod numerics;
 pub mod pipeline;
+pub mod reproduction_report;
 pub mod rheology;
 pub mod stages;
 pub mod theory;

@@ -153,6 +153,24 @@ enum Command {
         #[arg(long, default_value_t = 0.0)]
         rel_tol: f64,
     },
+    /// Write the reproduction report: one self-contained HTML page with the claims and their
+    /// verdicts, every figure by chapter, the last run's cost and timeline, and provenance
+    /// (open it from disk; it makes no request).
+    Report {
+        /// The pipeline file.
+        #[arg(default_value = "pipelines/thesis.yaml")]
+        pipeline: PathBuf,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Where the run published its figures and tables.
+        #[arg(long, default_value = "figures")]
+        figures: PathBuf,
+        #[arg(long, default_value = "tables")]
+        tables: PathBuf,
+        /// The HTML file written.
+        #[arg(long, short, default_value = "report/index.html")]
+        out: PathBuf,
+    },
     /// Print a published Parquet table (or some of its columns) as text.
     Show {
         /// The Parquet file (tables/<stage>.parquet or figures/<figure>.parquet).
@@ -401,6 +419,19 @@ fn main() -> ExitCode {
                     break;
                 }
             }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Report { pipeline, cache, figures, tables, out } => {
+            let p = load(&pipeline, &registry)?;
+            let versions = registry.iter().map(|k| (k.name().to_string(), k.version())).collect();
+            let sources = repro::reproduction_report::Sources {
+                pipeline_file: pipeline,
+                figures_dir: figures,
+                tables_dir: tables,
+                run_report: Some(cache.cache.join("runs").join("last.json")),
+            };
+            let (figures, claims) = repro::reproduction_report::write(&p, &versions, &sources, &out)?;
+            println!("wrote {} ({figures} figures, {claims} claims)", out.display());
             Ok(ExitCode::SUCCESS)
         }
         Command::Verify { produced, reference, rel_tol } => {

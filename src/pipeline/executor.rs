@@ -407,7 +407,9 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         make_bar(&multi, &label, n)
                     });
                 }
-                let outcomes: Vec<(Result<Output, String>, f64)> = match &opts.executor {
+                // Per job: its outcome, its wall time and when it started (seconds from the start of
+                // the run; not known for jobs run elsewhere).
+                let outcomes: Vec<(Result<Output, String>, f64, Option<f64>)> = match &opts.executor {
                     Executor::Local => pool.install(|| {
                         // One task per split: tasks differ in cost by orders of magnitude, and rayon's
                         // default splitting can leave several expensive tasks queued behind one
@@ -416,9 +418,10 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             .with_max_len(1)
                             .map(|j| {
                                 let kind = registry.get(&p.stages[j.stage].kind).unwrap();
+                                let started = start.elapsed().as_secs_f64();
                                 let (out, dt) = compute_task(kind, &j.key, &j.params, &input_tables[&j.stage], &cache);
                                 bars[&j.stage].inc(1);
-                                (out, dt)
+                                (out, dt, Some(started))
                             })
                             .collect()
                     }),
@@ -455,8 +458,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             .map(|(j, s)| {
                                 j.ran_on = s.placement;
                                 match s.result {
-                                    Ok(entry) => (Ok(entry.output), entry.wall_time_s),
-                                    Err(e) => (Err(e), 0.0),
+                                    Ok(entry) => (Ok(entry.output), entry.wall_time_s, None),
+                                    Err(e) => (Err(e), 0.0, None),
                                 }
                             })
                             .collect()
@@ -467,7 +470,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 }
                 // A twin takes its job's outcome.
                 let twin_outcomes: Vec<(Result<Output, String>, f64)> =
-                    twins.iter().map(|(_, first)| outcomes[*first].clone()).collect();
+                    twins.iter().map(|(_, first)| (outcomes[*first].0.clone(), outcomes[*first].1)).collect();
                 for ((j, first), (out, dt)) in twins.iter().zip(twin_outcomes) {
                     let mut r = TaskRecord::new(
                         &p.stages[j.stage],
@@ -480,7 +483,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     records.push(r);
                     plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
                 }
-                for (j, (out, dt)) in jobs.iter().zip(outcomes) {
+                for (j, (out, dt, started)) in jobs.iter().zip(outcomes) {
                     let stage = &p.stages[j.stage];
                     let mut r = TaskRecord::new(
                         stage,
@@ -490,6 +493,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         Some(j.reason.clone()),
                     );
                     r.wall_time_s = dt;
+                    r.started_s = started;
                     r.error = out.as_ref().err().cloned();
                     r.ran_on = j.ran_on.clone();
                     records.push(r);

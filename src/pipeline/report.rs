@@ -32,6 +32,10 @@ pub struct TaskRecord {
     /// Why it was computed (or would be): `never run`, `new sweep point`, ...
     pub reason: Option<String>,
     pub wall_time_s: f64,
+    /// When it started, in seconds from the start of the run (computed in this process;
+    /// with `wall_time_s`, the run's timeline).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub started_s: Option<f64>,
     pub error: Option<String>,
     /// Where it was computed when not in this process (`SLURM job 12_3`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -55,6 +59,7 @@ impl TaskRecord {
             status,
             reason,
             wall_time_s: 0.0,
+            started_s: None,
             error: None,
             ran_on: None,
         }

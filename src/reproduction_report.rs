@@ -1,0 +1,427 @@
+//! The reproduction report: one self-contained HTML page (figures inlined as SVG, no
+//! script, no request: a Content-Security-Policy of `default-src 'none'`) that shows what
+//! a pipeline reproduces. At the top, the claims verdict and the table of every claim; then
+//! a section per chapter with each figure under its thesis number and caption, the claims
+//! that read the tables it draws, and its provenance (code version, task key); then the
+//! last run's cost per stage and its timeline, the stage graph, and the provenance of the
+//! whole (repro version, the pipeline file's hash, the git commit when there is one).
+//!
+//! It reads what a run leaves behind: the pipeline file, the published figures and
+//! `claims` table, and the run report `cache/runs/last.json`.
+
+use crate::pipeline::report::{RunReport, Status};
+use crate::pipeline::spec::Pipeline;
+use anyhow::{Context, Result};
+use polars::prelude::{DataFrame, DataType};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Where the report's inputs are.
+pub struct Sources {
+    pub pipeline_file: PathBuf,
+    pub figures_dir: PathBuf,
+    pub tables_dir: PathBuf,
+    /// The run report (`cache/runs/last.json`); absent: no cost or timeline section.
+    pub run_report: Option<PathBuf>,
+}
+
+/// One claim's row of the `claims` table.
+#[derive(Clone, Debug)]
+struct ClaimRow {
+    id: String,
+    source: String,
+    statement: String,
+    stage: String,
+    aggregate: String,
+    value: f64,
+    thesis: String,
+    independent: Option<(f64, String)>,
+    verdict: String,
+    expected: String,
+    reason: String,
+    docs: String,
+}
+
+fn strings(df: &DataFrame, name: &str) -> Result<Vec<String>> {
+    let c = df.column(name).with_context(|| format!("column `{name}`"))?;
+    Ok(c.str()?.iter().map(|s| s.unwrap_or_default().to_string()).collect())
+}
+
+fn numbers(df: &DataFrame, name: &str) -> Result<Vec<f64>> {
+    let c = df.column(name).with_context(|| format!("column `{name}`"))?.cast(&DataType::Float64)?;
+    Ok(c.f64()?.into_no_null_iter().collect())
+}
+
+fn read_claims(path: &Path) -> Result<Vec<ClaimRow>> {
+    let df = crate::pipeline::table::read_parquet(path)?;
+    let (id, source, statement, stage) =
+        (strings(&df, "id")?, strings(&df, "source")?, strings(&df, "statement")?, strings(&df, "stage")?);
+    let (value, thesis, verdict, expected) =
+        (numbers(&df, "value")?, strings(&df, "thesis")?, strings(&df, "verdict")?, strings(&df, "expected")?);
+    let (has_ind, ind_value, ind_source) =
+        (numbers(&df, "has_independent")?, numbers(&df, "independent_value")?, strings(&df, "independent_source")?);
+    let (reason, docs, aggregate) = (strings(&df, "reason")?, strings(&df, "docs")?, strings(&df, "aggregate")?);
+    Ok((0..df.height())
+        .map(|i| ClaimRow {
+            id: id[i].clone(),
+            source: source[i].clone(),
+            statement: statement[i].clone(),
+            stage: stage[i].clone(),
+            aggregate: aggregate[i].clone(),
+            value: value[i],
+            thesis: thesis[i].clone(),
+            independent: (has_ind[i] != 0.0).then(|| (ind_value[i], ind_source[i].clone())),
+            verdict: verdict[i].clone(),
+            expected: expected[i].clone(),
+            reason: reason[i].clone(),
+            docs: docs[i].clone(),
+        })
+        .collect())
+}
+
+/// Text for HTML.
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+fn number(x: f64) -> String {
+    crate::pipeline::table::format_number(x)
+}
+
+/// The chapter a figure title belongs to: "Fig. 3.2: ..." -> "3"; Appendix A is the thesis'
+/// Chapter 7 of figures (Figs. 7.3-7.4).
+fn chapter_of(title: &str) -> String {
+    let Some(rest) = title.strip_prefix("Fig. ") else { return "other".into() };
+    let ch: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    if ch.is_empty() {
+        "other".into()
+    } else {
+        ch
+    }
+}
+
+fn chapter_heading(ch: &str) -> &'static str {
+    match ch {
+        "2" => "Chapter 2: adhesion theories (JKR, DMT, Maugis)",
+        "3" => "Chapter 3: a hemispherical shell pressed by a plate, adhesion and friction",
+        "4" => "Chapter 4: friction of an adhesive cylinder sliding on a viscoelastic half-plane",
+        "5" => "Chapter 5: rolling on and under a viscoelastic substrate, Persson-Brener",
+        "7" => "Appendix A: Persson's adhesionless friction",
+        _ => "Further figures (not in the thesis: checks, limits, extensions)",
+    }
+}
+
+/// The stages a stage reads, directly or through others.
+fn ancestors(p: &Pipeline, name: &str) -> BTreeSet<String> {
+    let mut seen = BTreeSet::new();
+    let mut todo = vec![name.to_string()];
+    while let Some(n) = todo.pop() {
+        if let Some(s) = p.stage(&n) {
+            for d in &s.needs {
+                if seen.insert(d.clone()) {
+                    todo.push(d.clone());
+                }
+            }
+        }
+    }
+    seen
+}
+
+fn git(args: &[&str], dir: &Path) -> Option<String> {
+    let out = std::process::Command::new("git").args(args).current_dir(dir).output().ok()?;
+    out.status.success().then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+const STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
+h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
+table{border-collapse:collapse;font-size:.85em;margin:.5em 0}td,th{border:1px solid #ddd;padding:.2em .5em;vertical-align:top}\
+th{background:#f4f4f4}.reproduced{color:#176b2c;font-weight:600}.differs{color:#9a5b00;font-weight:600}\
+.regressed{color:#b00020;font-weight:700}figure{margin:1.5em 0;border:1px solid #eee;padding:.5em}\
+figure svg{max-width:100%;height:auto}figcaption{font-size:.9em;color:#444}.summary{font-size:1.2em;padding:.6em;background:#f6f8fa}\
+.small{font-size:.8em;color:#555}nav a{margin-right:1em}";
+
+fn verdict_cell(c: &ClaimRow) -> String {
+    let class = if c.verdict == "reproduced" {
+        "reproduced"
+    } else if c.expected == "differs" {
+        "differs"
+    } else {
+        "regressed"
+    };
+    let label = if class == "regressed" { "differs (regression)" } else { c.verdict.as_str() };
+    format!("<td class=\"{class}\">{label}</td>")
+}
+
+/// The measured value: a number, or for a monotonicity claim whether it holds.
+fn shown_value(c: &ClaimRow) -> String {
+    match c.aggregate.as_str() {
+        "increasing" | "decreasing" => {
+            format!("{} ({})", if c.value == 1.0 { "yes" } else { "no" }, c.aggregate)
+        }
+        _ => number(c.value),
+    }
+}
+
+fn claims_table(claims: &[&ClaimRow]) -> String {
+    let mut s = String::from(
+        "<table class=\"claims\"><tr><th>claim</th><th>where</th><th>statement</th><th>thesis</th><th>repro</th>\
+         <th>independent</th><th>verdict</th><th>why it differs</th></tr>\n",
+    );
+    for c in claims {
+        let independent = c
+            .independent
+            .as_ref()
+            .map_or(String::new(), |(v, src)| format!("{} <span class=\"small\">({})</span>", number(*v), esc(src)));
+        let why = if c.docs.is_empty() {
+            esc(&c.reason)
+        } else {
+            format!("{} <span class=\"small\">({})</span>", esc(&c.reason), esc(&c.docs))
+        };
+        let _ = writeln!(
+            s,
+            "<tr id=\"claim-{id}\"><td><code>{id}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{independent}</td>{}<td>{why}</td></tr>",
+            esc(&c.source),
+            esc(&c.statement),
+            esc(&c.thesis),
+            shown_value(c),
+            verdict_cell(c),
+            id = esc(&c.id),
+        );
+    }
+    s.push_str("</table>\n");
+    s
+}
+
+/// Writes the report; returns the number of figures and claims it shows.
+pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources, out: &Path) -> Result<(usize, usize)> {
+    let claims_stage = p.stages.iter().find(|s| s.kind == "claims").map(|s| s.name.clone());
+    let claims: Vec<ClaimRow> = match &claims_stage {
+        Some(name) => {
+            let path = src.tables_dir.join(format!("{name}.parquet"));
+            read_claims(&path)
+                .with_context(|| format!("reading the claims table {} (run the pipeline first)", path.display()))?
+        }
+        None => Vec::new(),
+    };
+    let run: Option<RunReport> = match &src.run_report {
+        Some(path) if path.exists() => {
+            Some(serde_json::from_slice(&std::fs::read(path)?).with_context(|| format!("reading {}", path.display()))?)
+        }
+        _ => None,
+    };
+    let pipeline_bytes = std::fs::read(&src.pipeline_file)?;
+    let dir = src.pipeline_file.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let commit = git(&["rev-parse", "HEAD"], dir);
+    let dirty = git(&["status", "--porcelain", "--untracked-files=no"], dir).is_some_and(|s| !s.is_empty());
+
+    let mut h = String::new();
+    h.push_str("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n");
+    h.push_str("<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'; img-src data:\">\n");
+    h.push_str("<title>repro: reproduction report</title>\n");
+    let _ = writeln!(h, "<style>{STYLE}</style></head><body>");
+    h.push_str("<h1>Reproduction report</h1>\n<p>Roohollah Nazari, <i>Adhesion and Friction Effects in Soft Contact Mechanics: From Shell Buckling to Viscoelastic Rolling</i>, PhD thesis, Politecnico di Bari, 2025, reproduced by <code>repro</code> from its own code.</p>\n");
+
+    // Claims.
+    let n = claims.len();
+    let reproduced = claims.iter().filter(|c| c.verdict == "reproduced").count();
+    let explained = claims.iter().filter(|c| c.verdict == "differs" && c.expected == "differs").count();
+    let regressed = n - reproduced - explained;
+    let figures: Vec<_> = p.stages.iter().filter(|s| s.kind == "figure").collect();
+    let mut chapters: BTreeMap<String, Vec<_>> = BTreeMap::new();
+    for f in &figures {
+        let title = f.points.first().and_then(|pt| pt.params["title"].as_str()).unwrap_or(&f.name).to_string();
+        chapters.entry(chapter_of(&title)).or_default().push((f, title));
+    }
+    let order = ["2", "3", "4", "5", "7", "other"];
+    h.push_str("<nav>");
+    h.push_str("<a href=\"#claims\">Claims</a>");
+    for ch in order.iter().filter(|c| chapters.contains_key(**c)) {
+        let _ = write!(
+            h,
+            "<a href=\"#chapter-{ch}\">{}</a>",
+            if *ch == "7" {
+                "App. A".to_string()
+            } else if *ch == "other" {
+                "Further".into()
+            } else {
+                format!("Ch. {ch}")
+            }
+        );
+    }
+    h.push_str("<a href=\"#cost\">Cost</a><a href=\"#graph\">Stages</a><a href=\"#provenance\">Provenance</a></nav>\n");
+    let _ = writeln!(
+        h,
+        "<p class=\"summary\" id=\"verdict\">{reproduced} of {n} thesis claims reproduced, {explained} differ (explained){}.</p>",
+        if regressed > 0 { format!(", <span class=\"regressed\">{regressed} regressed</span>") } else { String::new() }
+    );
+    h.push_str("<h2 id=\"claims\">The thesis' claims</h2>\n<p>Each claim is a stage of the pipeline that reads a published table; the verdict compares the quantity with the thesis' value and the tolerance its text implies. A claim that differs carries its reason.</p>\n");
+    h.push_str(&claims_table(&claims.iter().collect::<Vec<_>>()));
+
+    // Chapters.
+    let mut shown = 0;
+    for ch in order.iter().filter(|c| chapters.contains_key(**c)) {
+        let _ = writeln!(h, "<h2 id=\"chapter-{ch}\">{}</h2>", chapter_heading(ch));
+        for (f, title) in &chapters[*ch] {
+            let svg_path = src.figures_dir.join(format!("{}.svg", f.name));
+            let svg = std::fs::read_to_string(&svg_path)
+                .with_context(|| format!("reading {} (run the pipeline first)", svg_path.display()))?;
+            let svg = svg.trim_start_matches(|c| c != '<');
+            let svg = match svg.find("<svg") {
+                Some(i) => &svg[i..],
+                None => svg,
+            };
+            let up = ancestors(p, &f.name);
+            let bearing: Vec<&ClaimRow> = claims.iter().filter(|c| up.contains(&c.stage)).collect();
+            let key = run
+                .as_ref()
+                .and_then(|r| r.tasks.iter().find(|t| t.stage == f.name))
+                .and_then(|t| t.key.clone())
+                .unwrap_or_default();
+            let _ = writeln!(
+                h,
+                "<figure id=\"figure-{name}\">{svg}<figcaption><b>{}</b><br><span class=\"small\">figures/{name}.svg, data figures/{name}.parquet; figure@v{}; reads {}; task key <code>{}</code></span></figcaption>",
+                esc(title),
+                code_versions.get("figure").copied().unwrap_or(0),
+                esc(&f.needs.join(", ")),
+                esc(&key),
+                name = esc(&f.name),
+            );
+            if !bearing.is_empty() {
+                h.push_str(&claims_table(&bearing));
+            }
+            h.push_str("</figure>\n");
+            shown += 1;
+        }
+    }
+
+    // Cost and timeline.
+    h.push_str("<h2 id=\"cost\">Cost of the last run</h2>\n");
+    match &run {
+        None => h.push_str("<p>No run report found.</p>\n"),
+        Some(r) => {
+            let computed = r.count(Status::Computed);
+            let _ = writeln!(
+                h,
+                "<p>{} tasks: {computed} computed, {} from the cache, {} failed; {:.1} s of wall time.</p>",
+                r.tasks.len(),
+                r.count(Status::Cached),
+                r.count(Status::Failed),
+                r.wall_time_s
+            );
+            let mut per_stage: BTreeMap<&str, (usize, usize, f64)> = BTreeMap::new();
+            for t in &r.tasks {
+                let e = per_stage.entry(&t.stage).or_default();
+                match t.status {
+                    Status::Computed => {
+                        e.0 += 1;
+                        e.2 += t.wall_time_s;
+                    }
+                    _ => e.1 += 1,
+                }
+            }
+            let mut rows: Vec<_> = per_stage.into_iter().filter(|(_, v)| v.0 > 0).collect();
+            rows.sort_by(|a, b| b.1 .2.total_cmp(&a.1 .2));
+            if rows.is_empty() {
+                h.push_str("<p>Every task came from the cache.</p>\n");
+            } else {
+                h.push_str("<table><tr><th>stage</th><th>computed</th><th>cached</th><th>task time (s)</th></tr>\n");
+                for (stage, (c, k, t)) in &rows {
+                    let _ = writeln!(h, "<tr><td>{}</td><td>{c}</td><td>{k}</td><td>{t:.2}</td></tr>", esc(stage));
+                }
+                h.push_str("</table>\n");
+                h.push_str(&timeline(r));
+            }
+        }
+    }
+
+    // Stage graph.
+    h.push_str("<h2 id=\"graph\">Stages</h2>\n<details><summary>");
+    let _ = write!(h, "{} stages of {} (kind, code version, what each reads)", p.stages.len(), esc(&p.file));
+    h.push_str("</summary><table><tr><th>stage</th><th>kind</th><th>points</th><th>reads</th></tr>\n");
+    for s in &p.stages {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}@v{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&s.name),
+            esc(&s.kind),
+            code_versions.get(&s.kind).copied().unwrap_or(0),
+            s.points.len(),
+            esc(&s.needs.join(", "))
+        );
+    }
+    h.push_str("</table></details>\n");
+
+    // Provenance.
+    h.push_str("<h2 id=\"provenance\">Provenance</h2>\n<table>");
+    let _ = writeln!(h, "<tr><th>repro</th><td>{}</td></tr>", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(
+        h,
+        "<tr><th>pipeline</th><td>{} (blake3 {})</td></tr>",
+        esc(&src.pipeline_file.display().to_string()),
+        blake3::hash(&pipeline_bytes).to_hex()
+    );
+    let _ = writeln!(
+        h,
+        "<tr><th>git commit</th><td>{}</td></tr>",
+        commit.map_or("not a git checkout".to_string(), |c| format!(
+            "{c}{}",
+            if dirty { " (with uncommitted changes)" } else { "" }
+        ))
+    );
+    h.push_str("</table>\n</body></html>\n");
+
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    let tmp = out.with_extension("html.tmp");
+    std::fs::write(&tmp, h).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, out).with_context(|| format!("writing {}", out.display()))?;
+    Ok((shown, n))
+}
+
+/// The run's timeline: one bar per computed task (start to end), a row per stage, as SVG.
+fn timeline(r: &RunReport) -> String {
+    let tasks: Vec<_> = r.tasks.iter().filter(|t| t.status == Status::Computed && t.started_s.is_some()).collect();
+    if tasks.is_empty() {
+        return "<p>No timeline: the computed tasks ran elsewhere (SLURM) or before timing was recorded.</p>\n".into();
+    }
+    let mut stages: Vec<&str> = Vec::new();
+    for t in &tasks {
+        if !stages.contains(&t.stage.as_str()) {
+            stages.push(&t.stage);
+        }
+    }
+    let end = tasks.iter().map(|t| t.started_s.unwrap() + t.wall_time_s).fold(0.0f64, f64::max).max(1e-9);
+    let (left, width, row) = (170.0, 880.0, 14.0);
+    let height = row * stages.len() as f64 + 30.0;
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"timeline\" width=\"{}\" height=\"{height}\" viewBox=\"0 0 {} {height}\" font-size=\"10\">\n",
+        left + width + 10.0,
+        left + width + 10.0
+    );
+    for (i, st) in stages.iter().enumerate() {
+        let y = i as f64 * row;
+        let _ = writeln!(s, "<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", left - 4.0, y + 10.0, esc(st));
+        for t in tasks.iter().filter(|t| t.stage == *st) {
+            let x = left + width * t.started_s.unwrap() / end;
+            let w = (width * t.wall_time_s / end).max(0.5);
+            let _ = writeln!(
+                s,
+                "<rect x=\"{x:.1}\" y=\"{:.1}\" width=\"{w:.1}\" height=\"{:.1}\" fill=\"#4a78b5\"><title>{} {}: {:.2} s</title></rect>",
+                y + 2.0,
+                row - 4.0,
+                esc(st),
+                esc(&t.point),
+                t.wall_time_s
+            );
+        }
+    }
+    let y = row * stages.len() as f64 + 14.0;
+    let _ = writeln!(
+        s,
+        "<text x=\"{left}\" y=\"{y}\">0 s</text><text x=\"{}\" y=\"{y}\" text-anchor=\"end\">{end:.1} s from the start of the run</text></svg>",
+        left + width
+    );
+    s
+}

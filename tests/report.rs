@@ -1,0 +1,110 @@
+//! `repro report`: the HTML page lists every figure of the pipeline (inlined SVG) and every
+//! claim with its verdict, the last run's timeline, and provenance, and makes no request
+//! (a Content-Security-Policy of `default-src 'none'`, no external reference). The browser
+//! check of the same page is `make report-check` (ci/report_check.mjs), run by CI.
+
+mod common;
+use common::Scratch;
+
+const PIPELINE: &str = r#"
+stages:
+  - name: pulloff
+    kind: theory.maugis_pulloff
+    params:
+      lambda: [0.1, 1, 10]
+
+  - name: fig2_x
+    kind: figure
+    needs: [pulloff]
+    params:
+      title: "Fig. 2.9: pull-off vs λ"
+      x_label: "λ"
+      y_label: "P"
+      log_x: true
+      layers:
+        - data: {from: pulloff, x: lambda, y: P_bar_pulloff, label: "Maugis"}
+
+  - name: extra
+    kind: figure
+    needs: [pulloff]
+    params:
+      title: "A check of our own"
+      x_label: "λ"
+      y_label: "P"
+      layers:
+        - data: {from: pulloff, x: lambda, y: P_bar_pulloff, label: "Maugis"}
+
+  - name: c_jkr
+    kind: claim
+    publish: false
+    needs: [pulloff]
+    params:
+      id: jkr
+      source: "Fig. 2.9"
+      statement: "JKR limit <at large λ>"
+      quantity: {from: pulloff, y: P_bar_pulloff, x: lambda, x_min: 9, aggregate: value}
+      thesis: {value: -1.5, rel_tol: 0.01}
+      expect: reproduced
+
+  - name: c_dmt
+    kind: claim
+    publish: false
+    needs: [pulloff]
+    params:
+      id: dmt
+      source: "Fig. 2.9"
+      statement: "DMT at λ = 0.1"
+      quantity: {from: pulloff, y: P_bar_pulloff, x: lambda, x_max: 0.11, aggregate: value}
+      thesis: {value: -2, rel_tol: 0.001}
+      expect: differs
+      reason: "not yet the limit"
+      docs: docs/claims.md
+
+  - name: claims
+    kind: claims
+    needs: [c_jkr, c_dmt]
+    params:
+      claims: [c_jkr, c_dmt]
+"#;
+
+#[test]
+fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
+    let s = Scratch::new("report");
+    s.write("p.yaml", PIPELINE);
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    let out = s.repro(&["report", "p.yaml", "--out", "rep/index.html"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("(2 figures, 2 claims)"), "{stdout}");
+    let html = std::fs::read_to_string(s.path("rep/index.html")).unwrap();
+    assert!(html.contains("content=\"default-src 'none'; style-src 'unsafe-inline'; img-src data:\""));
+    assert!(!html.contains("src=\"http") && !html.contains("href=\"http"), "an external reference");
+    assert!(html.contains("1 of 2 thesis claims reproduced, 1 differ (explained)"));
+    // Figures by chapter, inlined, with their claims; a figure outside the thesis apart.
+    let ch2 = html.find("id=\"chapter-2\"").unwrap();
+    let other = html.find("id=\"chapter-other\"").unwrap();
+    let fig = html.find("id=\"figure-fig2_x\"").unwrap();
+    let extra = html.find("id=\"figure-extra\"").unwrap();
+    assert!(ch2 < fig && fig < other && other < extra);
+    assert!(html[fig..extra].contains("<svg") && html[fig..extra].contains("claim-jkr"));
+    // Text is escaped, the claims table has one row per claim (and again under the figures).
+    assert!(html.contains("JKR limit &lt;at large λ&gt;"));
+    assert_eq!(html.matches("<tr id=\"claim-dmt\">").count(), 3);
+    assert!(html.contains("class=\"differs\">differs</td>") && html.contains("not yet the limit"));
+    // The last run computed everything: its timeline has a bar per computed task.
+    assert!(html.contains("class=\"timeline\""));
+    assert!(html.matches("<rect ").count() >= 3 + 2, "timeline bars");
+    assert!(html.contains("blake3 ") && html.contains("git commit"));
+}
+
+#[test]
+fn the_report_of_a_pipeline_not_yet_run_says_what_to_do() {
+    let s = Scratch::new("report-not-run");
+    s.write("p.yaml", PIPELINE);
+    let out = s.repro(&["report", "p.yaml", "--out", "rep/index.html"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("run the pipeline first"), "{err}");
+    assert!(!s.path("rep/index.html").exists());
+}
