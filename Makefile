@@ -64,7 +64,7 @@ clean-cache:
 	rm -rf cache
 
 # Wall time of the full gamma_c map (Fig. 3.9: fem.gamma_c over h/R x mu and the buckling
-# limits) from an empty cache, release build; see README "Chapter 3: adhesion and friction".
+# limits) from an empty cache, release build; see docs/shell.md, "Cost".
 bench-gamma-c:
 	$(CARGO) build --release
 	rm -rf target/bench-gamma-c

@@ -171,7 +171,7 @@ fn dry_run_and_status_explain_without_writing() {
 
 #[test]
 fn a_sweep_of_thousands_of_tasks_plans_runs_and_reruns_as_a_no_op() {
-    // `cargo bench --bench scale` times this at 1e3..1e5 tasks (README); here the counts.
+    // `cargo bench --bench scale` times this at 1e3..1e5 tasks (docs/reliability.md); here the counts.
     let s = Scratch::new("scale");
     s.write("p.yaml", "stages:\n  - name: many\n    kind: util.sleep\n    params: {x: {linspace: [1, 5000, 5000]}}\n  - name: all\n    kind: util.sleep\n    needs: [many]\n    params: {x: 0}\n");
     let (code, _, r) = s.run("p.yaml", &["--dry-run"]);

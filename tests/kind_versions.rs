@@ -1,5 +1,5 @@
 //! Guards the rule "a change to a stage's code that can change its results bumps its
-//! VERSION" (README, "Code versions"). Every kind is run on reference parameters; the
+//! VERSION" (docs/pipelines.md, "Code versions"). Every kind is run on reference parameters; the
 //! hash of its output is recorded per `kind@vN` in tests/kind_fingerprints.json. If the
 //! output changes while the version stays, this test fails: bump the kind's VERSION (which
 //! invalidates exactly that kind's cached results and what depends on them), then record
@@ -182,7 +182,7 @@ fn outputs_change_only_with_a_version_bump() {
 }
 
 /// The kinds that solve something, with the column(s) that carry their error estimate: every
-/// row of their output has a finite, non-negative estimate (issue 7). The wall time is the
+/// row of their output has a finite, non-negative estimate. The wall time is the
 /// kind's own `wall_time_s` where it measures one, else the executor's measurement of the
 /// task, added to every task table (tests/adaptive.rs checks it on `theory.persson`).
 /// Closed forms (Hertz, JKR, DMT limits), fits (their standard errors), figures, calibrations

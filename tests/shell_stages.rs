@@ -38,7 +38,7 @@ fn the_cycle_and_the_three_regimes_reach_the_tables() {
     let w = column(&t, "W_bar")[0];
     assert!(w > 0.015 && w < 0.03, "{w}");
     // The mesh study (the cycle on 120 elements alongside) against the same cycle on 240
-    // (measured, session 18: F_buckling 9.338, W_bar 0.02477; F at delta/R = 0.05 and 0.19 on
+    // (measured: F_buckling 9.338, W_bar 0.02477; F at delta/R = 0.05 and 0.19 on
     // the loading leg 1.659493 and 9.000983). Here F_buckling is 9.289 +- 0.147 and W_bar
     // 0.0230 +- 0.0103: the estimates cover the errors, without being vacuous.
     assert_eq!(strings(&t, "mesh_error_source")[0], "study");
@@ -170,7 +170,7 @@ fn the_mesh_study_covers_the_error_of_a_coarse_mesh() {
     // steps of 0.01 R), mu = 0, no adhesion: the cycle on 120 runs alongside. On this mesh
     // F_bar is 9.314 and W 0.0206 N mm; the 480-element cycle gives 9.304 and 0.0200, and
     // the sequence 30 ... 480 (9.107, 9.314, 9.352, 9.258, 9.304) scatters by about +-0.05
-    // about 9.29 (measured, session 16). The estimate covers that and is not vacuous.
+    // about 9.29 (measured). The estimate covers that and is not vacuous.
     let s = Scratch::new("shell-mesh-study");
     s.run_pipeline(&format!(
         "stages:
@@ -213,8 +213,8 @@ fn a_bad_map_model_field_names_its_path() {
 #[test]
 fn the_default_mesh_gives_the_converged_adhesive_snap() {
     // Fig. 3.2's adhesive case (R = 15, h = 1, gamma = 1e-3 N/mm, mu = 0) on the default mesh
-    // (1.5 (R + h) / g0 = 240 x 2). Reference: the mesh convergence study (README, "Accuracy
-    // and cost"): F R/(E h^3) = 7.873 at 480 x 4 (70 steps, 8 bisections), 7.86-7.87 from 240
+    // (1.5 (R + h) / g0 = 240 x 2). Reference: the mesh convergence study (`make bench`, the FEM
+    // candidates of pipelines/bench.yaml): F R/(E h^3) = 7.873 at 480 x 4 (70 steps, 8 bisections), 7.86-7.87 from 240
     // elements on; the unresolved 100 x 4 gave 10.6, the adhesionless snap is at 9.36. The
     // thesis reads ~7.5.
     let s = Scratch::new("shell-default-mesh");
@@ -241,9 +241,9 @@ fn the_landing_criterion_counts_only_the_drops_an_experiment_sees() {
     // h/R = 0.06 on the default mesh, mu = 0, to delta/R = 0.25. gamma/(E h) = 1e-3: the
     // stability test gives up the flattened state at delta/R = 0.1916 and the drop comes at
     // 0.21 (measured), so both criteria see a snap, with the same F_buckling. 2e-2: the
-    // stability test gives up a state before 0.25 (at delta/R 0.2156 with the band solver of
-    // session 12; at 3e-4, the marginal "start instability" of the gamma_c map, with the
-    // sparse LU before: where it fails depends on rounding), but no inverted state is
+    // stability test gives up a state before 0.25 (at delta/R 0.2156 with the band solver;
+    // at 3e-4, the marginal "start instability" of the gamma_c map, with a sparse LU: where
+    // it fails depends on rounding), but no inverted state is
     // reachable before 0.25: a snap under `instability`, none under `landing`.
     let s = Scratch::new("shell-landing");
     s.run_pipeline(

@@ -187,10 +187,9 @@ proptest! {
     fn pull_off_and_descent_agree_at_the_pull_off(ll in -0.5f64..0.5, lk in -1.3f64..-0.3) {
         use repro::bem::branch::{descend_to_load, pull_off};
         let p = Params::sls(10f64.powf(ll), 1.0, 10f64.powf(lk), 1e-6);
-        // Lambda up to 3.2. Until session 15 this ran to 1.4 only: proptest had found the
-        // descent to 95 % of the pull-off failing above about 2 (load control from the
-        // interpolated guess, next to the ripples of the discrete crack front), now caught by
-        // the search along the path (`branch::along_the_path`; the cases it found are
+        // Lambda up to 3.2: above about 2 the descent to 95 % of the pull-off by load control
+        // from the interpolated guess fails next to the ripples of the discrete crack front,
+        // and is caught by the search along the path (`branch::along_the_path`; the cases it found are
         // `the_descent_reaches_95_percent_of_the_pull_off_at_large_lambda`).
         let start = solve(&p, repro::bem::solver::starting_mesh(&p, 1e-3));
         prop_assert!(start.converged);

@@ -100,7 +100,7 @@ fn q(s: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
 /// of `q` at the element edges (odd multiples of a) and at the nodes (even ones), each
 /// evaluated once: 4n + 1 evaluations of the exponential integrals per retardation time
 /// instead of two per coefficient (8n - 2). With the kernel built once per lambda
-/// continuation (`solver::Operator::scaled`), measured (session 21, release): a power-law
+/// continuation (`solver::Operator::scaled`), measured (release): a power-law
 /// rolling point (lambda = 3, W = 0.1, k = 0.001, s = 0.5, V0 = 1e6), 75 % of whose time
 /// had been the exponential integrals, 0.22 -> 0.145 s; the Chapter 4-5 stages of
 /// `thesis.yaml` 1289 G -> 1123 G instructions (rolling_power_law 86 -> 42 s of task

@@ -182,7 +182,7 @@ pub fn zone_elements(lambda: f64, mesh: Mesh) -> f64 {
 
 /// Below one element per cohesive zone the crack front is not resolved, and a mesh
 /// refinement's difference does not bound a pull-off's error. Measured (`pipelines/bench.yaml`,
-/// `pulloff_n200`, session 17): at lambda = 3 on 200 elements (0.69 per zone) the pull-off
+/// `pulloff_n200`): at lambda = 3 on 200 elements (0.69 per zone) the pull-off
 /// load is 90 % off at V = 1e-6 and its Richardson estimate covers 1 of 4 points; every
 /// configuration with 2 or more per zone is covered (error / estimate <= 0.46). `bem.sweep`'s
 /// mu* is covered at 1.39 per zone (n = 400, lambda = 3).
@@ -574,8 +574,8 @@ const TWO_GRID_MIN_N: usize = 2000;
 /// 0.5, k = 0.001, V0 = 4.64e-4, refined 1920 -> 3840 -> 7680 -> 15360): 3.2 s -> 0.19 s,
 /// the LU at n = 7680 (m = 3760 active nodes) alone had taken 2.1-2.6 s; GMRES takes 1-4
 /// iterations at r = 2 and 4, 2-5 at r = 8; the same mu* to every digit printed. The
-/// Chapter 4-5 stages of `thesis.yaml` (session 21, with `LAMBDA_STEP_STALL`): 1917 G ->
-/// 1289 G instructions, the rolling stages 3-5 times faster (rolling_vs_load 54 -> 11 s
+/// Chapter 4-5 stages of `thesis.yaml` (with `LAMBDA_STEP_STALL`): 1289 G instructions
+/// instead of 1917 G, the rolling stages 3-5 times faster (rolling_vs_load 11 s instead of 54 s
 /// of task time), every table equal to the printed digits; no nested solve with r > 2
 /// failed there (one that fails falls back, as at r = 2, to a fresh LU of the fine mesh).
 const MAX_NESTED_RATIO: usize = 8;
@@ -948,8 +948,8 @@ const LAMBDA_STEP_ITERATIONS: usize = 15;
 /// Measured (release, W = 0.1, k = 0.1, the same mu* to every digit printed): lambda = 24,
 /// V0 = 2.7 2475 -> 1838 Newton iterations, 68 -> 36 s; V0 = 2.2 2784 -> 2088, 69 -> 45 s;
 /// the lambda = 16 maximum 61 -> 40 s. The Chapter 4-5 stages of `thesis.yaml` run side by
-/// side, one core each (session 21): 2080 G -> 1917 G instructions, 540 -> 464 s of task
-/// time, every table equal to the digits `repro show` prints.
+/// side, one core each: 1917 G instructions instead of 2080 G, 464 s of task time instead
+/// of 540 s, every table equal to the digits `repro show` prints.
 const LAMBDA_STEP_STALL: usize = 2;
 
 fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Preconditioner) -> Solution {
@@ -1065,7 +1065,7 @@ impl PathSolver {
 /// Safety factors of the reported error estimate of mu* (`solve_to_tolerance`): on the
 /// mesh's Richardson share, Roache's factor 3 for a grid convergence index from two grids
 /// (the reported share is then |mu*(n) - mu*(n/2)|), and 2 on the domain's
-/// (`domain_rel_error`). Measured (`pipelines/bench.yaml`, session 16: W = 1, k = 0.1,
+/// (`domain_rel_error`). Measured (`pipelines/bench.yaml`: W = 1, k = 0.1,
 /// lambda = 0.3 and 3, V0 = 0.1, 1, 10, against rel_tol 1e-5 on a 2.5 times longer
 /// domain): without them the actual error of mu* was 0.4-1.45 times the estimate (the
 /// largest at lambda = 3, V0 = 0.1, where the mesh sequence is not yet asymptotic at

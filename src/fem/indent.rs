@@ -541,7 +541,7 @@ mod tests {
         // h = 1) from the Euler predictor: monolithic Newton reaches 1e-10 E h^2 with the
         // last steps quadratic; the staggered scheme (each inner solve a converged Newton
         // without adhesive stiffness) contracts linearly. Measured: see the assertion message
-        // (printed with --nocapture) and the README.
+        // (printed with --nocapture).
         let (e, r, h) = (1.3, 15.0, 1.0);
         let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, 0.45, Base::Clamped);
         let plate = Plate::new(&model.mesh, e, 1000.0).with_adhesion(1e-3, 0.1);

@@ -82,7 +82,7 @@ pub struct ShownRange {
 pub trait Kind: Send + Sync + 'static {
     /// The name used in pipeline files, e.g. `theory.persson`.
     const NAME: &'static str;
-    /// Bump when a change to the code can change this kind's outputs (see README).
+    /// Bump when a change to the code can change this kind's outputs (docs/pipelines.md, "Code versions").
     const VERSION: u32;
     /// One line for `repro kinds` and the schema.
     const DOC: &'static str;

@@ -69,8 +69,8 @@ fn maugis_dugdale_line_to(a: f64, lambda: f64, tol: f64) -> Option<LinePoint> {
 /// Below lambda ~ 0.18 the limit is the pull-off: W falls monotonically towards it as the
 /// contact closes (no compressive zone at pull-off, ERRATA 19), and the radius is 0 (measured:
 /// the limit at lambda = 0.158, an interior minimum at A = 2.3e-5 at lambda = 0.1995, whose
-/// A grows continuously from 0). Until session 22 the minimum over [1e-6, 10] was taken
-/// as it stood: at small lambda it sat on the range's end, 8e-13 above the limit.
+/// A grows continuously from 0). The minimum over [1e-6, 10] taken as it stands would sit,
+/// at small lambda, on the range's end, 8e-13 above the limit.
 pub fn maugis_dugdale_line_pull_off(lambda: f64) -> Option<PullOff> {
     let interior =
         least_load(|la| maugis_dugdale_line(la.exp(), lambda).map(|p| (p.load, p.load_error)), 1e-6, 10.0, 300)?;

@@ -10,10 +10,10 @@
 //! psi = 1 - phi = (1 + 1/(r + z)) / (r + 1), phi = z / (r + 1), r = sqrt(1 + z^2) (for a
 //! spectrum Sum_j w_j phi_j and Sum_j w_j psi_j, the weights summing to 1), with ln B as
 //! log1p(-(1 - k) phi) while (1 - k) phi < 1/2 and as ln(k + (1 - k) psi) beyond, and the
-//! friction as x - 1/x = 2 sinh(ln x): no cancellation at any speed. (Until session 22 the
-//! residual was x (1 - (1 - k) phi) - 1 and f = (x - 1)(x + 1)/x, which lost log10(1/k)
-//! digits near saturation and log10(1/u) at low speed: the roots' error bounds showed
-//! 3e-11 and 6e-11 relative there.)
+//! friction as x - 1/x = 2 sinh(ln x): no cancellation at any speed. (The
+//! residual x (1 - (1 - k) phi) - 1 and f = (x - 1)(x + 1)/x lose log10(1/k) digits near
+//! saturation and log10(1/u) at low speed: the roots' error bounds show 3e-11 and 6e-11
+//! relative there.)
 //! The friction per unit width (Eq. 5.13 normalised, ERRATA 13) is
 //!   f_T / dgamma = x - 1/x   (G_lead = dgamma^2 / G_trail),
 //! with the limits (ERRATA 14): (1 - k) u for u << 1, sqrt(u / (1 - k)) for
