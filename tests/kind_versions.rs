@@ -21,6 +21,7 @@ fn reference_params() -> BTreeMap<&'static str, Value> {
         ("theory.maugis_dugdale", json!({"lambda": 0.7, "A_min": 0.1, "A_max": 2.0, "n": 7})),
         ("theory.maugis_pulloff", json!({"lambda": 0.7})),
         ("theory.line_pulloff", json!({"lambda": 0.7})),
+        ("theory.lennard_jones", json!({"z_min": 0.9, "z_max": 3.0, "n": 7})),
         ("theory.sphere_limits", json!({"A_min": 0.1, "A_max": 2.0, "n": 5})),
         ("theory.hertz_jkr_pressure", json!({"P_bar": 1.0, "n": 12})),
         ("theory.persson", json!({"inv_k": 10, "V0": 1.3})),
@@ -210,6 +211,7 @@ const SOLVER_ERROR_COLUMNS: &[(&str, &[&str])] = &[
 const NOT_SOLVERS: &[&str] = &[
     "theory.sphere_limits",
     "theory.hertz_jkr_pressure",
+    "theory.lennard_jones",
     "util.sleep",
     "util.fail",
     "bench.summary",

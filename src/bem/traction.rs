@@ -26,6 +26,16 @@ pub fn pressure(h: f64, lambda: f64) -> (f64, f64) {
     (p, dp)
 }
 
+/// The interaction energy per unit area at separation h = z eps, in units of dgamma: the
+/// potential of the law, sigma = -d(energy)/dh, zero at infinite separation:
+///   energy(z) / dgamma = z^-8 / 3 - 4 z^-2 / 3,
+/// -1 at equilibrium (z = 1: the work of adhesion), the disjoining pressure's minimum -sigma0
+/// at z = 3^(1/6) where the energy bends (Fig. 2.3).
+pub fn energy(z: f64) -> f64 {
+    let z2 = z.powi(-2);
+    z2.powi(4) / 3.0 - 4.0 * z2 / 3.0
+}
+
 /// The gap at which the repulsive branch (H <= 0) carries a compressive pressure P >= 0.
 pub fn gap_for_pressure(p: f64, lambda: f64) -> f64 {
     assert!(p >= 0.0, "the repulsive branch carries P >= 0, got {p}");
@@ -56,6 +66,14 @@ mod tests {
             let h = gap_for_pressure(p, lambda);
             assert!(h <= 0.0 && (pressure(h, lambda).0 - p).abs() < 1e-9 * (1.0 + p), "{p}");
         }
+        // The energy is the pressure's potential: -d(energy dgamma)/dh = sigma, i.e. in these
+        // units dgamma/(sigma0 eps) = alpha times -d energy/dz = P at z.
+        for z in [0.9, 1.0, 1.12, 1.5, 3.0] {
+            let d = (energy(z + 1e-6) - energy(z - 1e-6)) / 2e-6;
+            let h = (z - 1.0) / (ALPHA * lambda);
+            assert!((-ALPHA * d - pressure(h, lambda).0).abs() < 1e-8, "{z}");
+        }
+        assert_eq!(energy(1.0), -1.0);
         // Derivative by finite differences.
         let h = 0.05;
         let fd = (pressure(h + 1e-7, lambda).0 - pressure(h - 1e-7, lambda).0) / 2e-7;

@@ -432,8 +432,62 @@ fn finite(e: f64) -> f64 {
     e.min(f64::MAX)
 }
 
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LennardJonesParams {
+    /// Separations h/eps from `z_min` to `z_max` (eps the equilibrium separation), `n` points.
+    #[serde(default = "default_z_min")]
+    pub z_min: f64,
+    #[serde(default = "default_z_max")]
+    pub z_max: f64,
+    #[serde(default = "default_n")]
+    pub n: usize,
+}
+
+fn default_z_min() -> f64 {
+    0.85
+}
+fn default_z_max() -> f64 {
+    4.0
+}
+
+/// The Lennard-Jones 3-9 law the BEM solves with (`bem::traction`; the shell's is the same law
+/// shifted by g0, `fem::adhesion`): energy and disjoining pressure against separation.
+pub struct LennardJones;
+
+impl Kind for LennardJones {
+    const NAME: &'static str = "theory.lennard_jones";
+    const VERSION: u32 = 1;
+    const DOC: &'static str =
+        "The Lennard-Jones 3-9 law of the solvers: energy/dgamma and pressure/sigma0 vs separation h/eps (Fig. 2.3)";
+    type Params = LennardJonesParams;
+
+    fn validate(p: &LennardJonesParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        check::positive(&mut e, "z_min", p.z_min);
+        if !(p.z_max > p.z_min) {
+            e.push(FieldError::new("z_max", format!("must exceed z_min ({}), got {}", p.z_min, p.z_max)));
+        }
+        check::at_least(&mut e, "n", p.n, 2);
+        e
+    }
+
+    fn run(p: &LennardJonesParams, _: &Inputs) -> Result<Output> {
+        use crate::bem::traction::{energy, pressure, ALPHA};
+        let z: Vec<f64> = (0..p.n).map(|i| p.z_min + (p.z_max - p.z_min) * i as f64 / (p.n - 1) as f64).collect();
+        // The solver's pressure at lambda = 1: h/eps = 1 + alpha H.
+        let sigma: Vec<f64> = z.iter().map(|&z| pressure((z - 1.0) / ALPHA, 1.0).0).collect();
+        Ok(Table::new()
+            .with_f64("h_over_eps", z.clone())
+            .with_f64("energy_over_dgamma", z.iter().map(|&z| energy(z)).collect())
+            .with_f64("pressure_over_sigma0", sigma)
+            .into())
+    }
+}
+
 pub fn register(r: &mut Registry) {
     r.add::<MaugisDugdale>()
+        .add::<LennardJones>()
         .add::<MaugisPullOff>()
         .add::<LinePullOff>()
         .add::<SphereLimits>()
