@@ -50,6 +50,11 @@ enum Command {
         /// Run only these stages and what they need (repeatable).
         #[arg(long = "target")]
         targets: Vec<String>,
+        /// Set a stage's parameter for this run, e.g. `-S max_vs_lambda.W=1` or
+        /// `-S persson.V0='{logspace: [-2, 2, 9]}'` (YAML, as in the file; repeatable). The file
+        /// is not changed; the run report records the overrides.
+        #[arg(short = 'S', long = "set", value_name = "STAGE.PARAM=VALUE")]
+        set: Vec<spec::Override>,
         /// Worker threads (default: one per core).
         #[arg(long)]
         jobs: Option<usize>,
@@ -108,6 +113,9 @@ enum Command {
     Status {
         #[arg(default_value = DEFAULT_PIPELINE)]
         pipeline: PathBuf,
+        /// Set a stage's parameter, as `repro run -S`.
+        #[arg(short = 'S', long = "set", value_name = "STAGE.PARAM=VALUE")]
+        set: Vec<spec::Override>,
         #[command(flatten)]
         cache: CacheArg,
         /// List every task.
@@ -195,7 +203,15 @@ fn csv_field(t: &str) -> String {
 }
 
 fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
-    let p = spec::load(path, registry)?;
+    load_with(path, registry, &[])
+}
+
+fn load_with(
+    path: &Path,
+    registry: &repro::pipeline::kind::Registry,
+    overrides: &[spec::Override],
+) -> Result<Pipeline, InvalidPipeline> {
+    let p = spec::load_with(path, registry, overrides)?;
     for w in &p.warnings {
         eprintln!("{w}");
     }
@@ -230,6 +246,7 @@ fn main() -> ExitCode {
         Command::Run {
             pipeline,
             targets,
+            set,
             jobs,
             dry_run,
             explain,
@@ -245,7 +262,7 @@ fn main() -> ExitCode {
             max_jobs,
             retries,
         } => {
-            let p = load(&pipeline, &registry)?;
+            let p = load_with(&pipeline, &registry, &set)?;
             let executor = match executor {
                 ExecutorArg::Local => Executor::Local,
                 ExecutorArg::Slurm => {
@@ -297,8 +314,8 @@ fn main() -> ExitCode {
             let ok = repro::pipeline::slurm::work(&registry, &cache.cache, &list, index)?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
         }
-        Command::Status { pipeline, cache, explain } => {
-            let p = load(&pipeline, &registry)?;
+        Command::Status { pipeline, set, cache, explain } => {
+            let p = load_with(&pipeline, &registry, &set)?;
             let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
             let rep = executor::run(&p, &registry, &opts)?;
             print!("{}", rep.summary(explain));

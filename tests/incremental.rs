@@ -79,9 +79,24 @@ fn editing_only_a_figure_style_reruns_only_that_figure() {
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 1);
     assert_eq!(r.task("fig", "")["status"], "computed");
-    assert_eq!(r.task("fig", "")["reason"], "parameters changed: title");
+    assert_eq!(r.task("fig", "")["reason"], "parameters changed: title: \"first title\" -> \"second title\"");
     let svg2 = String::from_utf8(s.read("figures/fig.svg")).unwrap();
     assert!(svg2.contains("second title") && s.read("figures/fig.svg") != svg1);
+}
+
+#[test]
+fn a_fixed_parameter_changed_in_a_swept_stage_is_named_with_its_values() {
+    // Not "new sweep point x=1": the sweep is the same, `ms` changed at every point.
+    let s = Scratch::new("fixed-param");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    s.run("p.yaml", &[]);
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 1, "t"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("sweep", "x=1")["reason"], "parameters changed: ms: 0 -> 1");
+    // A new value of the swept parameter is a new sweep point.
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 1, "t"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("sweep", "x=3")["reason"], "new sweep point x=3");
 }
 
 #[test]

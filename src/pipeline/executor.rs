@@ -93,8 +93,11 @@ fn stale_reason(
     inputs: &BTreeMap<String, Hash>,
     point: &Point,
     key: &str,
+    overrides: &[String],
 ) -> String {
     let Some(m) = prev else { return "never run".into() };
+    // A parameter set on the command line says so.
+    let set_by_cli = |k: &str| overrides.iter().any(|o| o.starts_with(&format!("{}.{k}=", stage.name)));
     if m.kind != stage.kind {
         return format!("kind changed ({} -> {})", m.kind, stage.kind);
     }
@@ -117,19 +120,40 @@ fn stale_reason(
                 "key changed".into()
             }
         }
-        None if stage.points.len() == 1 && m.points.len() == 1 => {
-            let (a, b) = (&m.points[0].params, &point.params);
-            let mut names: BTreeSet<&String> = BTreeSet::new();
-            if let (Some(a), Some(b)) = (a.as_object(), b.as_object()) {
-                for k in a.keys().chain(b.keys()) {
-                    if a.get(k) != b.get(k) {
-                        names.insert(k);
-                    }
-                }
+        None => {
+            // The previous point nearest to this one (fewest parameters differing): a change
+            // of swept parameters alone is a new sweep point; any other is a parameter change,
+            // named with its old and new values.
+            let diff = |a: &serde_json::Value| -> Vec<(String, String, String)> {
+                let (Some(a), Some(b)) = (a.as_object(), point.params.as_object()) else { return Vec::new() };
+                let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+                let show = |v: Option<&serde_json::Value>| v.map_or("(none)".to_string(), |v| short(&v.to_string()));
+                keys.into_iter()
+                    .filter(|k| a.get(*k) != b.get(*k))
+                    .map(|k| (k.clone(), show(a.get(k)), show(b.get(k))))
+                    .collect()
+            };
+            let nearest = m.points.iter().map(|mp| diff(&mp.params)).min_by_key(|d| d.len()).unwrap_or_default();
+            let swept = |k: &str| point.label.split(' ').any(|kv| kv.split('=').next() == Some(k));
+            if !point.label.is_empty() && nearest.iter().all(|(k, _, _)| swept(k)) {
+                format!("new sweep point {}", point.label)
+            } else {
+                let changes: Vec<String> = nearest
+                    .iter()
+                    .map(|(k, a, b)| format!("{k}: {a} -> {b}{}", if set_by_cli(k) { " (-S)" } else { "" }))
+                    .collect();
+                format!("parameters changed: {}", changes.join(", "))
             }
-            format!("parameters changed: {}", names.into_iter().cloned().collect::<Vec<_>>().join(", "))
         }
-        None => format!("new sweep point {}", point.label),
+    }
+}
+
+/// A value for a message: at most 40 characters.
+fn short(s: &str) -> String {
+    if s.chars().count() <= 40 {
+        s.to_string()
+    } else {
+        format!("{}…", s.chars().take(39).collect::<String>())
     }
 }
 
@@ -345,9 +369,15 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                     eprintln!("repro: warning: cache entry {key} of stage `{}` is corrupted ({why}); recomputing it", stage.name);
                                     format!("corrupted cache entry ({why})")
                                 }
-                                Miss::Absent => {
-                                    stale_reason(plan.prev.as_ref(), stage, kind.version(), &plan.inputs, pt, &key)
-                                }
+                                Miss::Absent => stale_reason(
+                                    plan.prev.as_ref(),
+                                    stage,
+                                    kind.version(),
+                                    &plan.inputs,
+                                    pt,
+                                    &key,
+                                    &p.overrides,
+                                ),
                             };
                             if round > 0 {
                                 reason = format!("adaptive refinement, round {round} ({reason})");
@@ -597,8 +627,13 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     }
     let _ = multi.clear();
 
-    let mut report =
-        RunReport { pipeline: p.file.clone(), dry_run: opts.dry_run, tasks: records, ..Default::default() };
+    let mut report = RunReport {
+        pipeline: p.file.clone(),
+        overrides: p.overrides.clone(),
+        dry_run: opts.dry_run,
+        tasks: records,
+        ..Default::default()
+    };
     if !opts.dry_run {
         remove_stale_temporaries(&[&opts.figures_dir, &opts.tables_dir]);
         for (si, m) in &manifests {

@@ -69,6 +69,9 @@ impl TaskRecord {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct RunReport {
     pub pipeline: String,
+    /// The parameters set on the command line for this run (`-S STAGE.PARAM=VALUE`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<String>,
     pub dry_run: bool,
     pub wall_time_s: f64,
     pub counts: BTreeMap<String, usize>,

@@ -26,7 +26,7 @@
 use super::adaptive::AdaptiveAxis;
 use super::kind::{FieldError, Registry, ShownRange};
 use super::table::format_number;
-use marked_yaml::types::{MarkedMappingNode, Node};
+use marked_yaml::types::{MarkedMappingNode, MarkedScalarNode, Node};
 use serde_json::{Map, Number, Value};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
@@ -119,6 +119,8 @@ pub struct Pipeline {
     pub stages: Vec<Stage>,
     /// What the checks of ranges shown found (see the module's documentation).
     pub warnings: Vec<Warning>,
+    /// The parameters set over the file's (`Override`), as given.
+    pub overrides: Vec<String>,
 }
 
 impl Pipeline {
@@ -127,8 +129,46 @@ impl Pipeline {
     }
 }
 
+/// A parameter set from the command line for one run (`repro run -S STAGE.PARAM=VALUE`):
+/// VALUE is YAML, as in the file (a number, a list, `{logspace: [...]}`, a mapping).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Override {
+    pub stage: String,
+    pub param: String,
+    pub value: String,
+}
+
+impl std::str::FromStr for Override {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (target, value) = s.split_once('=').ok_or_else(|| format!("`{s}`: expected STAGE.PARAM=VALUE"))?;
+        let (stage, param) =
+            target.split_once('.').ok_or_else(|| format!("`{target}`: expected STAGE.PARAM before `=`"))?;
+        if stage.is_empty() || param.is_empty() || value.trim().is_empty() {
+            return Err(format!("`{s}`: expected STAGE.PARAM=VALUE with all three given"));
+        }
+        Ok(Override { stage: stage.to_string(), param: param.to_string(), value: value.to_string() })
+    }
+}
+
+impl std::fmt::Display for Override {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}.{}={}", self.stage, self.param, self.value)
+    }
+}
+
 /// Reads and validates a pipeline file.
 pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    load_with(path, registry, &[])
+}
+
+/// Reads a pipeline file, sets the parameters `overrides` name (each replaces the stage's
+/// parameter, or adds it), and validates the result.
+pub fn load_with(
+    path: &std::path::Path,
+    registry: &Registry,
+    overrides: &[Override],
+) -> Result<Pipeline, InvalidPipeline> {
     let file = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| {
         InvalidPipeline(vec![Diagnostic {
@@ -147,7 +187,7 @@ pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, Inv
             message: format!("the pipeline file is not UTF-8 (invalid byte at offset {at})"),
         }])
     })?;
-    parse(&file, &text, registry)
+    parse_with(&file, &text, registry, overrides)
 }
 
 /// A range shown by a stage (`by`), declared at `location`.
@@ -258,6 +298,63 @@ fn strip_marker(s: &str) -> String {
 
 /// Parses pipeline text (exposed for tests).
 pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    parse_with(file, text, registry, &[])
+}
+
+/// Sets each override's parameter in the parsed file: a diagnostic per override that names no
+/// stage, or whose value is not YAML.
+fn apply_overrides(file: &str, root: &mut Node, overrides: &[Override]) -> Vec<Diagnostic> {
+    let mut errors = Vec::new();
+    let at = |o: &Override, message: String| Diagnostic {
+        location: Location { file: format!("{file} (-S {o})"), line: 0, column: 0 },
+        message,
+    };
+    for o in overrides {
+        let value = match marked_yaml::parse_yaml(0, format!("v: {}", o.value)) {
+            Ok(Node::Mapping(m)) => m.get_node("v").cloned(),
+            _ => None,
+        };
+        let Some(value) = value else {
+            errors.push(at(o, format!("`{}` is not a YAML value", o.value)));
+            continue;
+        };
+        let stages = match root.as_mapping_mut().and_then(|m| m.get_mut(&MarkedScalarNode::from("stages"))) {
+            Some(Node::Sequence(seq)) => seq,
+            _ => {
+                errors.push(at(o, "the pipeline has no `stages` list".into()));
+                continue;
+            }
+        };
+        let names: Vec<String> =
+            stages.iter().filter_map(|n| n.as_mapping()?.get_scalar("name").map(|s| s.as_str().to_string())).collect();
+        let Some(stage) = stages
+            .iter_mut()
+            .filter_map(|n| n.as_mapping_mut())
+            .find(|m| m.get_scalar("name").is_some_and(|s| s.as_str() == o.stage))
+        else {
+            let known: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+            let hint = suggestion(&o.stage, &known).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+            errors.push(at(o, format!("no stage `{}` in the pipeline{hint}", o.stage)));
+            continue;
+        };
+        let key = MarkedScalarNode::from("params");
+        if !matches!(stage.get(&key), Some(Node::Mapping(_))) {
+            stage.insert(key.clone(), Node::Mapping(MarkedMappingNode::new_empty(marked_yaml::Span::new_blank())));
+        }
+        if let Some(Node::Mapping(params)) = stage.get_mut(&key) {
+            params.insert(MarkedScalarNode::from(o.param.as_str()), value);
+        }
+    }
+    errors
+}
+
+/// `parse`, with `overrides` applied to the parsed file before validation.
+pub fn parse_with(
+    file: &str,
+    text: &str,
+    registry: &Registry,
+    overrides: &[Override],
+) -> Result<Pipeline, InvalidPipeline> {
     if let Some(line) = second_document(text) {
         return Err(InvalidPipeline(vec![Diagnostic {
             location: Location { file: file.to_string(), line, column: 1 },
@@ -265,8 +362,12 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
         }]));
     }
     let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
-    let root = marked_yaml::parse_yaml_with_options(0, text, options)
+    let mut root = marked_yaml::parse_yaml_with_options(0, text, options)
         .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
+    let errors = apply_overrides(file, &mut root, overrides);
+    if !errors.is_empty() {
+        return Err(InvalidPipeline(errors));
+    }
     let mut cx =
         Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new(), ranges_used: BTreeSet::new() };
     let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
@@ -294,6 +395,7 @@ pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, In
             description,
             stages: stages.into_iter().map(|s| s.stage).collect(),
             warnings: cx.warnings,
+            overrides: overrides.iter().map(|o| o.to_string()).collect(),
         })
     } else {
         cx.errors.sort_by_key(|d| (d.location.line, d.location.column));
