@@ -127,10 +127,24 @@ enum Command {
         #[arg(default_value = DEFAULT_PIPELINE)]
         pipeline: PathBuf,
     },
-    /// Remove cache entries that no task of the pipelines refers to
-    /// (default: every pipelines/*.yaml).
+    /// Remove cache entries that nothing refers to: no task of the pipelines (default: every
+    /// pipelines/*.yaml and the pipelines of the recorded runs) and no task of a recorded run
+    /// (`repro runs`). `--dry-run` lists what would go.
     Gc {
         pipelines: Vec<PathBuf>,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// List the entries that would be removed, and their size; remove nothing.
+        #[arg(long)]
+        dry_run: bool,
+        /// Keep the entries of recorded runs only if they are younger than this many days
+        /// (default: keep those of every recorded run).
+        #[arg(long, value_name = "DAYS")]
+        older_than: Option<f64>,
+    },
+    /// List the recorded runs of a cache (newest last): when, which pipeline, the parameters
+    /// set with -S, what was computed.
+    Runs {
         #[command(flatten)]
         cache: CacheArg,
     },
@@ -145,7 +159,10 @@ enum Command {
     /// Print the JSON Schema of pipeline files.
     Schema,
     /// List the stage kinds with their code versions.
-    Kinds,
+    Kinds {
+        /// A kind to describe: its parameters (type, default, whether sweepable, meaning).
+        kind: Option<String>,
+    },
     /// Check that the figures and tables of a run equal the reference ones (default: the
     /// committed `figures/`): SVGs byte for byte, Parquet tables value by value (timing
     /// columns aside). Exit 0 if all equal, 1 if any differs (each named, with its first
@@ -234,6 +251,75 @@ fn fail(e: anyhow::Error) -> ExitCode {
     }
     eprintln!("repro: error: {e:#}");
     ExitCode::from(EXIT_ERROR)
+}
+
+/// A kind's parameters from its schema: name, type, default, sweepable, meaning.
+fn describe_kind(k: &dyn repro::pipeline::kind::DynKind) -> String {
+    use serde_json::Value;
+    let schema = k.params_schema();
+    let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
+    let resolve = |v: &Value| -> Value {
+        match v.get("$ref").and_then(Value::as_str).and_then(|r| r.rsplit('/').next()) {
+            Some(name) => defs.get(name).cloned().unwrap_or(Value::Null),
+            None => v.clone(),
+        }
+    };
+    let type_of = |v: &Value| -> String {
+        if let Some(r) = v.get("$ref").and_then(Value::as_str) {
+            return r.rsplit('/').next().unwrap_or(r).to_string();
+        }
+        match v.get("type") {
+            Some(Value::String(t)) => t.clone(),
+            Some(Value::Array(ts)) => ts.iter().filter_map(Value::as_str).collect::<Vec<_>>().join(" or "),
+            _ => match v.get("anyOf").or_else(|| v.get("oneOf")).and_then(Value::as_array) {
+                Some(alts) => alts
+                    .iter()
+                    .map(|a| {
+                        a.get("$ref")
+                            .and_then(Value::as_str)
+                            .map(|r| r.rsplit('/').next().unwrap_or(r).to_string())
+                            .or_else(|| a.get("type").and_then(Value::as_str).map(str::to_string))
+                            .or_else(|| a.get("const").map(|c| c.to_string()))
+                            .unwrap_or_else(|| "value".into())
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" or "),
+                None => v.get("enum").map_or("value".into(), |e| format!("one of {e}")),
+            },
+        }
+    };
+    let mut out = format!("{} (code version {}): {}\n\n", k.name(), k.version(), k.doc());
+    let required: Vec<&str> = schema
+        .get("required")
+        .and_then(Value::as_array)
+        .map_or(Vec::new(), |r| r.iter().filter_map(Value::as_str).collect());
+    let Some(props) = schema.get("properties").and_then(Value::as_object) else {
+        out.push_str("no parameters\n");
+        return out;
+    };
+    out.push_str(&format!("{:<18} {:<22} {:<14} {:<9} meaning\n", "parameter", "type", "default", "sweep"));
+    for (name, v) in props {
+        let doc = v
+            .get("description")
+            .and_then(Value::as_str)
+            .map(str::to_string)
+            .or_else(|| resolve(v).get("description").and_then(Value::as_str).map(str::to_string))
+            .unwrap_or_default();
+        let default = match v.get("default") {
+            Some(d) => d.to_string(),
+            None if required.contains(&name.as_str()) => "(required)".into(),
+            None => "(none)".into(),
+        };
+        let default = if default.chars().count() > 14 {
+            format!("{}…", default.chars().take(13).collect::<String>())
+        } else {
+            default
+        };
+        let sweep = if k.sweepable().contains(&name.as_str()) { "sweepable" } else { "" };
+        let doc = doc.split_whitespace().collect::<Vec<_>>().join(" ");
+        out.push_str(&format!("{name:<18} {:<22} {default:<14} {sweep:<9} {doc}\n", type_of(v)));
+    }
+    out
 }
 
 fn main() -> ExitCode {
@@ -326,24 +412,75 @@ fn main() -> ExitCode {
             print!("{}", graph::to_dot(&p));
             Ok(ExitCode::SUCCESS)
         }
-        Command::Gc { pipelines, cache } => {
+        Command::Gc { pipelines, cache, dry_run, older_than } => {
             let files = if pipelines.is_empty() {
-                let mut v: Vec<PathBuf> = std::fs::read_dir("pipelines")?
-                    .filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
-                    .collect();
+                let mut v: Vec<PathBuf> = std::fs::read_dir("pipelines")
+                    .map(|d| {
+                        d.filter_map(|e| e.ok().map(|e| e.path()))
+                            .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                // The pipelines of the recorded runs (a user's own file outside pipelines/).
+                for (_, r) in executor::run_history(&cache.cache) {
+                    let f = PathBuf::from(&r.pipeline);
+                    if f.exists() && !v.contains(&f) {
+                        v.push(f);
+                    }
+                }
                 v.sort();
+                v.dedup();
                 v
             } else {
                 pipelines
             };
+            if let Some(d) = older_than {
+                if !(d >= 0.0 && d.is_finite()) {
+                    return Err(UsageError(format!("--older-than {d}: expected a number of days >= 0")).into());
+                }
+            }
+            let opt = executor::GcOptions {
+                dry_run,
+                older_than: older_than.map(|d| std::time::Duration::from_secs_f64(d * 86400.0)),
+            };
             let ps = files.iter().map(|f| load(f, &registry)).collect::<Result<Vec<_>, _>>()?;
-            let (kept, removed, bytes) = executor::gc(&ps, &registry, &cache.cache)?;
+            let g = executor::gc(&ps, &registry, &cache.cache, opt)?;
+            let bytes: u64 = g.removed.iter().map(|(_, b)| b).sum();
+            if dry_run {
+                for (key, size) in &g.removed {
+                    println!("would remove {key} ({size} bytes)");
+                }
+            }
             eprintln!(
-                "repro gc: kept {kept} entries referred to by {} pipeline(s), removed {removed} ({:.1} kB)",
+                "repro gc: kept {} entries (referred to by {} pipeline(s) and {} recorded run(s)), {} {} ({:.1} kB)",
+                g.kept,
                 ps.len(),
+                g.runs_kept,
+                if dry_run { "would remove" } else { "removed" },
+                g.removed.len(),
                 bytes as f64 / 1e3
             );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Runs { cache } => {
+            let runs = executor::run_history(&cache.cache);
+            if runs.is_empty() {
+                println!("no recorded runs in {}", cache.cache.display());
+            }
+            for (path, r) in &runs {
+                let name = path.file_stem().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                let set =
+                    if r.overrides.is_empty() { String::new() } else { format!(" -S {}", r.overrides.join(" -S ")) };
+                println!(
+                    "{name}  {}  {}{set}  {} computed, {} cached, {} failed, {:.1} s",
+                    repro::pipeline::report::utc_time(r.started_unix_ms),
+                    r.pipeline,
+                    r.count(repro::pipeline::report::Status::Computed),
+                    r.count(repro::pipeline::report::Status::Cached),
+                    r.count(repro::pipeline::report::Status::Failed),
+                    r.wall_time_s
+                );
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Point { kind, params } => {
@@ -465,10 +602,20 @@ fn main() -> ExitCode {
             );
             Ok(if v.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
         }
-        Command::Kinds => {
+        Command::Kinds { kind: None } => {
             for k in registry.iter() {
                 println!("{:<28} v{:<3} {}", k.name(), k.version(), k.doc());
             }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Kinds { kind: Some(name) } => {
+            let Some(k) = registry.get(&name) else {
+                let known: Vec<_> = registry.names().collect();
+                return Err(
+                    UsageError(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))).into()
+                );
+            };
+            print!("{}", describe_kind(k));
             Ok(ExitCode::SUCCESS)
         }
     })();

@@ -108,3 +108,20 @@ fn point_rejects_a_repeated_parameter_and_names_the_kind_of_a_missing_one() {
     let out = s.repro(&["point", "util.sleep", "x=1"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+#[test]
+fn kinds_describes_a_kind_s_parameters() {
+    let s = Scratch::new("kinds-describe");
+    let out = s.repro(&["kinds", "bem.sweep"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lambda = text.lines().find(|l| l.starts_with("lambda ")).unwrap_or_else(|| panic!("{text}"));
+    assert!(lambda.contains("number") && lambda.contains("(required)") && lambda.contains("sweepable"), "{lambda}");
+    assert!(lambda.contains("Maugis-Tabor parameter"), "{lambda}");
+    let out = s.repro(&["kinds", "theory.lennard_jones"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.lines().any(|l| l.starts_with("z_min") && l.contains("0.85")), "{text}");
+    let out = s.repro(&["kinds", "bem.swep"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown stage kind `bem.swep`"));
+}

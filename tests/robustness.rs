@@ -105,22 +105,65 @@ fn a_second_repro_on_the_same_cache_refuses_or_waits() {
 }
 
 #[test]
-fn gc_removes_only_entries_no_pipeline_refers_to() {
+fn gc_removes_only_entries_nothing_refers_to() {
     let s = Scratch::new("gc");
     s.write("pipelines/a.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
     s.run("pipelines/a.yaml", &[]);
     s.write("pipelines/a.yaml", &sleep_pipeline("[1, 3]", 0, "t"));
     s.run("pipelines/a.yaml", &[]);
     // 4 entries from the first run, 3 new ones from the second (x=3, after, fig).
-    // Live: x=1, x=3 and the new after and fig. Dead: x=2 and the old after and fig.
+    // The pipeline needs x=1, x=3 and the new after and fig; the first run's x=2, after and
+    // fig are referred to by the recorded first run only.
     let before = entry_files(&s).len();
     assert_eq!(before, 7);
     let out = s.repro(&["gc"]);
     let text = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{text}");
+    assert!(
+        text.contains("kept 7 entries") && text.contains("2 recorded run(s)") && text.contains("removed 0"),
+        "{text}"
+    );
+    // A dry run with an age: lists the three, removes nothing.
+    let out = s.repro(&["gc", "--older-than", "0", "--dry-run"]);
+    let (stdout, text) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{text}");
+    assert_eq!(stdout.lines().filter(|l| l.starts_with("would remove ")).count(), 3, "{stdout}");
+    assert!(text.contains("kept 4 entries") && text.contains("would remove 3"), "{text}");
+    assert_eq!(entry_files(&s).len(), 7);
+    // Told to forget the recorded runs: the three go.
+    let out = s.repro(&["gc", "--older-than", "0"]);
+    let text = String::from_utf8_lossy(&out.stderr);
     assert!(text.contains("kept 4 entries") && text.contains("removed 3"), "{text}");
     let (_, _, r) = s.run("pipelines/a.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 0, "gc kept everything the pipeline needs");
+}
+
+#[test]
+fn gc_keeps_the_work_of_a_pipeline_outside_pipelines() {
+    // A user's own pipeline file elsewhere filled the cache; `repro gc` run where
+    // pipelines/ holds another file must not remove that work without being told.
+    let s = Scratch::new("gc-outside");
+    s.write("mine/study.yaml", &sleep_pipeline("[5, 6, 7]", 0, "mine"));
+    s.run("mine/study.yaml", &[]);
+    s.write("pipelines/a.yaml", &sleep_pipeline("[1]", 0, "t"));
+    s.run("pipelines/a.yaml", &[]);
+    let before = entry_files(&s).len();
+    let out = s.repro(&["gc"]);
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && text.contains("removed 0"), "{text}");
+    assert_eq!(entry_files(&s).len(), before);
+    // Even when the file is gone: the recorded run keeps its entries.
+    std::fs::remove_file(s.path("mine/study.yaml")).unwrap();
+    let out = s.repro(&["gc"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("removed 0"));
+    assert_eq!(entry_files(&s).len(), before);
+    // The history lists both runs, oldest first.
+    let out = s.repro(&["runs"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    assert!(lines[0].contains("mine/study.yaml") && lines[0].contains("5 computed"), "{stdout}");
+    assert!(lines[1].contains("pipelines/a.yaml") && lines[1].contains(" UTC "), "{stdout}");
 }
 
 #[test]

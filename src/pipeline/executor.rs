@@ -233,6 +233,7 @@ impl StagePlan {
 
 pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport> {
     let start = Instant::now();
+    let started_unix_ms = unix_ms();
     let mut target_idx = Vec::new();
     for t in &opts.targets {
         match p.stages.iter().position(|s| &s.name == t) {
@@ -628,6 +629,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     let _ = multi.clear();
 
     let mut report = RunReport {
+        started_unix_ms,
         pipeline: p.file.clone(),
         overrides: p.overrides.clone(),
         dry_run: opts.dry_run,
@@ -657,13 +659,53 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     report.wall_time_s = start.elapsed().as_secs_f64();
     report.finalize_counts();
     if !opts.dry_run {
-        super::cache::write_atomic(
-            &cache.root.join("runs").join("last.json"),
-            &serde_json::to_vec_pretty(&report)?,
-            &cache.tmp_dir(),
-        )?;
+        // The run's report, kept in the history (`repro runs`, and the roots of `repro gc`),
+        // and as the last run.
+        let bytes = serde_json::to_vec_pretty(&report)?;
+        let runs = cache.root.join("runs");
+        let name = format!("run-{:013}-{}.json", report.started_unix_ms, std::process::id());
+        super::cache::write_atomic(&runs.join(name), &bytes, &cache.tmp_dir())?;
+        super::cache::write_atomic(&runs.join("last.json"), &bytes, &cache.tmp_dir())?;
     }
     Ok(report)
+}
+
+/// The run reports kept in the history of a cache (`runs/run-*.json`), oldest first; a report
+/// that cannot be read is skipped.
+pub fn run_history(cache_dir: &Path) -> Vec<(PathBuf, RunReport)> {
+    let Ok(entries) = std::fs::read_dir(cache_dir.join("runs")) else { return Vec::new() };
+    let mut runs: Vec<(PathBuf, RunReport)> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+            name.starts_with("run-") && name.ends_with(".json")
+        })
+        .filter_map(|p| {
+            let r: RunReport = serde_json::from_slice(&std::fs::read(&p).ok()?).ok()?;
+            Some((p, r))
+        })
+        .collect();
+    runs.sort_by(|a, b| a.1.started_unix_ms.cmp(&b.1.started_unix_ms).then(a.0.cmp(&b.0)));
+    runs
+}
+
+/// What `gc` keeps and removes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GcOptions {
+    /// List what would go, remove nothing.
+    pub dry_run: bool,
+    /// Keep the entries of recorded runs younger than this only (None: of every recorded run).
+    pub older_than: Option<std::time::Duration>,
+}
+
+/// What `gc` found.
+#[derive(Clone, Debug, Default)]
+pub struct GcSummary {
+    pub kept: usize,
+    /// The entries removed (or, in a dry run, that would be), with their sizes.
+    pub removed: Vec<(Hash, u64)>,
+    /// The recorded runs whose entries were kept.
+    pub runs_kept: usize,
 }
 
 /// Computes one task and stores its entry (atomically): the kind's run with panics caught,
@@ -754,9 +796,10 @@ fn publish_stage(
     Ok(written)
 }
 
-/// Removes cache entries that no task of the given pipelines refers to. Returns
-/// (entries kept, entries removed, bytes freed).
-pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path) -> Result<(usize, usize, u64)> {
+/// Removes cache entries that nothing refers to: no task of the given pipelines, and no task
+/// of a run in the cache's history (younger than `older_than`, when given). A dry run lists
+/// them without removing.
+pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: GcOptions) -> Result<GcSummary> {
     let mut live: BTreeSet<String> = BTreeSet::new();
     for p in pipelines {
         let opts =
@@ -764,15 +807,31 @@ pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path) -> Resu
         let report = run(p, registry, &opts)?;
         live.extend(report.tasks.into_iter().filter_map(|t| t.key));
     }
-    let cache = Cache::open(cache_dir, LockMode::Wait)?;
-    let (mut kept, mut removed, mut bytes) = (0, 0, 0);
-    for key in cache.all_keys()? {
-        if live.contains(&key) {
-            kept += 1;
-        } else {
-            bytes += cache.remove(&key)?;
-            removed += 1;
+    let now_ms = unix_ms();
+    let mut summary = GcSummary::default();
+    for (_, r) in run_history(cache_dir) {
+        let young = opt.older_than.is_none_or(|age| now_ms.saturating_sub(r.started_unix_ms) < age.as_millis() as u64);
+        if young {
+            summary.runs_kept += 1;
+            live.extend(r.tasks.into_iter().filter_map(|t| t.key));
         }
     }
-    Ok((kept, removed, bytes))
+    let cache = if opt.dry_run { Cache::open_read_only(cache_dir) } else { Cache::open(cache_dir, LockMode::Wait)? };
+    for key in cache.all_keys()? {
+        if live.contains(&key) {
+            summary.kept += 1;
+        } else if opt.dry_run {
+            let size = std::fs::metadata(cache.entry_path(&key)).map(|m| m.len()).unwrap_or(0);
+            summary.removed.push((key, size));
+        } else {
+            let size = cache.remove(&key)?;
+            summary.removed.push((key, size));
+        }
+    }
+    Ok(summary)
+}
+
+/// Milliseconds since the Unix epoch (0 if the clock is before it).
+pub fn unix_ms() -> u64 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis() as u64)
 }

@@ -68,6 +68,9 @@ impl TaskRecord {
 
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct RunReport {
+    /// When the run started, in milliseconds since the Unix epoch.
+    #[serde(default)]
+    pub started_unix_ms: u64,
     pub pipeline: String,
     /// The parameters set on the command line for this run (`-S STAGE.PARAM=VALUE`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -174,5 +177,34 @@ impl RunReport {
             self.wall_time_s
         ));
         s
+    }
+}
+
+/// A time given in milliseconds since the Unix epoch as `YYYY-MM-DD HH:MM:SS UTC`.
+pub fn utc_time(unix_ms: u64) -> String {
+    let secs = unix_ms / 1000;
+    let (days, rem) = (secs / 86400, secs % 86400);
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}:{:02} UTC", rem / 3600, rem % 3600 / 60, rem % 60)
+}
+
+#[cfg(test)]
+mod time_tests {
+    #[test]
+    fn utc_time_of_known_instants() {
+        assert_eq!(super::utc_time(0), "1970-01-01 00:00:00 UTC");
+        // 2000-02-29 12:34:56 UTC (a leap day) = 951827696 s.
+        assert_eq!(super::utc_time(951_827_696_000), "2000-02-29 12:34:56 UTC");
+        // 2026-11-25 00:00:00 UTC = 1795564800 s.
+        assert_eq!(super::utc_time(1_795_564_800_000), "2026-11-25 00:00:00 UTC");
     }
 }
