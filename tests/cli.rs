@@ -125,3 +125,38 @@ fn kinds_describes_a_kind_s_parameters() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown stage kind `bem.swep`"));
 }
+
+#[test]
+fn sizes_and_tolerances_that_would_abort_or_hang_are_refused() {
+    // Each passed validation once: n = 1e11 then aborted the process allocating 800 GB,
+    // V0 = 1e300 panicked (an overflow in |c|) and now would underflow the quadrature's
+    // tolerance, rel_tol = 1e-16 refined for a minute.
+    let s = Scratch::new("bounds");
+    for (args, field) in [
+        (
+            &["theory.maugis_dugdale", "lambda=1", "A_min=0.01", "A_max=2", "n=100000000000"][..],
+            "parameter `n`: must lie in 2..=1000000",
+        ),
+        (&["theory.persson", "inv_k=2", "V0=1e300"][..], "parameter `V0`: must lie in (0, 1e100], got 1e300"),
+        (
+            &["theory.persson", "inv_k=2", "V0=1", "rel_tol=1e-16"][..],
+            "parameter `rel_tol`: the tolerance must lie in [1e-14, 0.01)",
+        ),
+    ] {
+        let mut a = vec!["point"];
+        a.extend_from_slice(args);
+        let out = s.repro(&a);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(field), "{args:?}: {err}");
+    }
+    // In a pipeline: located, nothing runs.
+    s.write("p.yaml", "stages:\n  - name: md\n    kind: theory.maugis_dugdale\n    params: {lambda: 1, A_min: 0.01, A_max: 2, n: 100000000000}\n");
+    let out = s.repro(&["run", "p.yaml", "--dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("p.yaml:4:") && err.contains("must lie in 2..=1000000"), "{err}");
+    // Persson's friction at the largest speed allowed is finite, about 1/V0.
+    let out = s.repro(&["point", "theory.persson", "inv_k=2", "V0=1e100"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -300,7 +300,7 @@ impl Kind for BemMaxima {
         if !(a > 0.0 && b > a) {
             e.push(FieldError::new("V0_range", format!("needs 0 < from < to, got [{a}, {b}]")));
         }
-        check::at_least(&mut e, "grid", p.grid, 3);
+        check::size(&mut e, "grid", p.grid, 3, 1000);
         check::in_open(&mut e, "log_tol", p.log_tol, 0.0, 1.0, "the tolerance");
         e
     }

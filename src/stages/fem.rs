@@ -74,9 +74,9 @@ impl ShellParams {
         check::positive(e, "E", self.E);
         check::in_open(e, "nu", self.nu, -1.0, 0.5, "Poisson's ratio");
         if let Some(n) = self.n_meridian {
-            check::at_least(e, "n_meridian", n, 4);
+            check::size(e, "n_meridian", n, 4, check::MAX_SHELL_ELEMENTS);
         }
-        check::at_least(e, "n_thickness", self.n_thickness, 1);
+        check::size(e, "n_thickness", self.n_thickness, 1, 16);
         check::positive(e, "grading", self.grading);
         self.imperfection.validate(e, "");
     }
@@ -213,7 +213,7 @@ impl IndentParams {
         e.extend(prefixed("shell", shell));
         check::positive(e, "penalty", self.penalty);
         check::in_open(e, "delta_max", self.delta_max, 0.0, 1.0, "delta/R");
-        check::at_least(e, "steps", self.steps, 1);
+        check::size(e, "steps", self.steps, 1, check::MAX_STEPS);
         check::in_open(e, "lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
         check::non_negative(e, "gamma", self.gamma);
         check::positive(e, "g0", self.g0);

@@ -149,10 +149,10 @@ impl MapModel {
         check::positive(e, "model.grading", self.grading);
         check::in_open(e, "model.nu", self.nu, -1.0, 0.5, "Poisson's ratio");
         if let Some(n) = self.n_meridian {
-            check::at_least(e, "model.n_meridian", n, 4);
+            check::size(e, "model.n_meridian", n, 4, check::MAX_SHELL_ELEMENTS);
         }
-        check::at_least(e, "model.n_thickness", self.n_thickness, 1);
-        check::at_least(e, "model.steps", self.steps, 1);
+        check::size(e, "model.n_thickness", self.n_thickness, 1, 16);
+        check::size(e, "model.steps", self.steps, 1, check::MAX_STEPS);
         check::in_open(e, "model.delta_max", self.delta_max, 0.0, 1.0, "delta/R");
         check::in_open(e, "model.lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
         self.imperfection.validate(e, "model.");

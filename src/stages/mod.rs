@@ -87,4 +87,18 @@ pub(crate) mod check {
             errs.push(FieldError::new(name, format!("must be at least {lo}, got {x}")));
         }
     }
+
+    /// A size (points, elements, steps) in lo..=hi: the upper bounds keep a task's memory and
+    /// time to what a laptop has (a size that passes is never an allocation that aborts).
+    pub fn size(errs: &mut Vec<FieldError>, name: &str, x: usize, lo: usize, hi: usize) {
+        if !(lo..=hi).contains(&x) {
+            errs.push(FieldError::new(name, format!("must lie in {lo}..={hi}, got {x}")));
+        }
+    }
+
+    /// Rows of a tabulated curve.
+    pub const MAX_POINTS: usize = 1_000_000;
+    /// Elements along the shell's meridian, and load steps.
+    pub const MAX_SHELL_ELEMENTS: usize = 20_000;
+    pub const MAX_STEPS: usize = 100_000;
 }

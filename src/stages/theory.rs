@@ -33,7 +33,7 @@ fn check_radii(e: &mut Vec<FieldError>, a_min: f64, a_max: f64, n: usize) {
     if !(a_max > a_min) {
         e.push(FieldError::new("A_max", format!("must exceed A_min ({a_min}), got {a_max}")));
     }
-    check::at_least(e, "n", n, 2);
+    check::size(e, "n", n, 2, check::MAX_POINTS);
 }
 
 #[derive(Serialize, Deserialize, JsonSchema)]
@@ -241,7 +241,7 @@ impl Kind for HertzJkrPressure {
     fn validate(p: &PressureParams) -> Vec<FieldError> {
         let mut e = Vec::new();
         check::positive(&mut e, "P_bar", p.P_bar);
-        check::at_least(&mut e, "n", p.n, 10);
+        check::size(&mut e, "n", p.n, 10, check::MAX_POINTS);
         e
     }
 
@@ -299,8 +299,20 @@ fn check_inv_k(e: &mut Vec<FieldError>, inv_k: f64) {
     }
 }
 
+/// A quadrature tolerance: below 1e-14 double precision cannot meet it (at 1e-16 the
+/// quadrature of `theory.persson` refines for a minute and returns the same digits).
 fn check_tol(e: &mut Vec<FieldError>, tol: f64) {
-    check::in_open(e, "rel_tol", tol, 0.0, 0.01, "the tolerance");
+    if !(1e-14..0.01).contains(&tol) {
+        e.push(FieldError::new("rel_tol", format!("the tolerance must lie in [1e-14, 0.01), got {tol}")));
+    }
+}
+
+/// A speed V0 for Persson's friction: beyond 1e100 mu* (about 1/V0 there) underflows the
+/// quadrature's relative tolerance.
+fn check_speed(e: &mut Vec<FieldError>, v0: f64) {
+    if !(v0 > 0.0 && v0 <= 1e100) {
+        e.push(FieldError::new("V0", format!("must lie in (0, 1e100], got {v0:e}")));
+    }
 }
 
 /// Persson's adhesionless friction mu* at one (1/k, V0) (Appendix A).
@@ -317,7 +329,7 @@ impl Kind for Persson {
     fn validate(p: &PerssonParams) -> Vec<FieldError> {
         let mut e = Vec::new();
         check_inv_k(&mut e, p.inv_k);
-        check::positive(&mut e, "V0", p.V0);
+        check_speed(&mut e, p.V0);
         check_tol(&mut e, p.rel_tol);
         e
     }
@@ -468,7 +480,7 @@ impl Kind for LennardJones {
         if !(p.z_max > p.z_min) {
             e.push(FieldError::new("z_max", format!("must exceed z_min ({}), got {}", p.z_min, p.z_max)));
         }
-        check::at_least(&mut e, "n", p.n, 2);
+        check::size(&mut e, "n", p.n, 2, check::MAX_POINTS);
         e
     }
 

@@ -32,9 +32,27 @@ pub fn sls_compliance(k: f64, omega: f64) -> (f64, f64) {
     (k + (1.0 - k) / d, -(1.0 - k) * omega / d)
 }
 
-/// |c| without cancellation: sqrt(1 + k^2 w^2) / sqrt(1 + w^2).
+/// |c| without cancellation: sqrt(1 + k^2 w^2) / sqrt(1 + w^2); written in 1/w where w^2
+/// would overflow (w ~ 1e154 on).
 fn abs_c(k: f64, omega: f64) -> f64 {
-    ((1.0 + (k * omega).powi(2)) / (1.0 + omega * omega)).sqrt()
+    if omega.abs() < BIG {
+        ((1.0 + (k * omega).powi(2)) / (1.0 + omega * omega)).sqrt()
+    } else {
+        let u = 1.0 / omega;
+        ((u * u + k * k) / (u * u + 1.0)).sqrt()
+    }
+}
+
+/// Beyond this w, w^2 is near overflow: the forms in 1/w take over.
+const BIG: f64 = 1e150;
+
+/// c w / (1 + w^2), as c / (w + 1/w) where w^2 would overflow.
+fn lorentzian(c: f64, w: f64) -> f64 {
+    if w.abs() < BIG {
+        c * w / (1.0 + w.powi(2))
+    } else {
+        c / (w + 1.0 / w)
+    }
 }
 
 /// A friction value with its quadrature error estimate.
@@ -48,7 +66,7 @@ pub struct Friction {
 pub fn mu_star(k: f64, v0: f64, rel_tol: f64) -> Friction {
     assert!(k > 0.0 && k <= 1.0 && v0 > 0.0, "k in (0, 1], V0 > 0");
     let r = |s: f64| abs_c(k, s * v0).sqrt();
-    let loss = |s: f64| (1.0 - k) * (s * v0) / (1.0 + (s * v0).powi(2));
+    let loss = |s: f64| lorentzian(1.0 - k, s * v0);
     let f = |s: f64| {
         if s == 0.0 {
             return 0.0;
