@@ -207,6 +207,13 @@ enum Command {
         /// tools; the default is an aligned table with polars' rounding.
         #[arg(long)]
         csv: bool,
+        /// Only the first N rows (with a line saying how many there are in all).
+        #[arg(long, value_name = "N")]
+        head: Option<usize>,
+        /// Show the provenance columns too (`task_key`, `code_version`), hidden by default
+        /// unless named in --columns or with --csv.
+        #[arg(long)]
+        all: bool,
     },
 }
 
@@ -371,7 +378,12 @@ fn main() -> ExitCode {
             if let Some(path) = report {
                 std::fs::write(&path, serde_json::to_vec_pretty(&rep)?)?;
             }
-            eprint!("{}", rep.summary(explain || dry_run));
+            // A dry run's plan goes to stdout (per stage; per task with --explain).
+            if dry_run {
+                print!("{}", rep.summary(explain));
+            } else {
+                eprint!("{}", rep.summary(explain));
+            }
             for f in &rep.published {
                 eprintln!("  wrote {f}");
             }
@@ -535,13 +547,18 @@ fn main() -> ExitCode {
             println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
             Ok(ExitCode::SUCCESS)
         }
-        Command::Show { file, columns, csv } => {
+        Command::Show { file, columns, csv, head, all } => {
             let df = repro::pipeline::table::read_parquet(&file)?;
             let names: Vec<String> = if columns.is_empty() {
-                df.get_column_names().iter().map(|c| c.to_string()).collect()
+                df.get_column_names()
+                    .iter()
+                    .map(|c| c.to_string())
+                    .filter(|c| all || csv || !matches!(c.as_str(), "task_key" | "code_version"))
+                    .collect()
             } else {
                 columns
             };
+            let shown_rows = head.unwrap_or(usize::MAX).min(df.height());
             let cols = names
                 .iter()
                 .map(|c| df.column(c).with_context(|| format!("{}: no column `{c}`", file.display())))
@@ -552,7 +569,7 @@ fn main() -> ExitCode {
                 polars::prelude::AnyValue::StringOwned(t) if csv => csv_field(&t),
                 v => v.to_string(),
             };
-            let cells: Vec<Vec<String>> = (0..df.height())
+            let cells: Vec<Vec<String>> = (0..shown_rows)
                 .map(|i| cols.iter().map(|c| c.get(i).map(&cell).unwrap_or_default()).collect())
                 .collect();
             let widths: Vec<usize> = (0..names.len())
@@ -572,6 +589,9 @@ fn main() -> ExitCode {
                 if writeln!(out, "{}", line(r)).is_err() {
                     break;
                 }
+            }
+            if shown_rows < df.height() && !csv {
+                let _ = writeln!(out, "... {} of {} rows shown", shown_rows, df.height());
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -160,3 +160,28 @@ fn sizes_and_tolerances_that_would_abort_or_hang_are_refused() {
     let out = s.repro(&["point", "theory.persson", "inv_k=2", "V0=1e100"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+#[test]
+fn a_dry_run_prints_its_plan_per_stage_and_show_prints_a_head() {
+    let s = Scratch::new("dry-plan");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3, 4, 5, 6]", 0, "t"));
+    let out = s.repro(&["run", "p.yaml", "--dry-run"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    // One line per stage (and the totals), not one per task.
+    let sweep: Vec<&str> = stdout.lines().filter(|l| l.trim_start().starts_with("sweep")).collect();
+    assert_eq!(sweep.len(), 1, "{stdout}");
+    assert!(sweep[0].contains("6 would run"), "{stdout}");
+    let out = s.repro(&["run", "p.yaml", "--dry-run", "--explain"]);
+    assert!(String::from_utf8_lossy(&out.stdout).lines().filter(|l| l.contains("x=")).count() >= 6);
+    // show: the first rows, provenance columns hidden unless asked.
+    s.run("p.yaml", &[]);
+    let out = s.repro(&["show", "tables/sweep.parquet", "--head", "2"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 4, "{text}");
+    assert!(!lines[0].contains("task_key") && lines[0].contains("x"), "{text}");
+    assert_eq!(lines[3], "... 2 of 6 rows shown");
+    let out = s.repro(&["show", "tables/sweep.parquet", "--all"]);
+    assert!(String::from_utf8_lossy(&out.stdout).lines().next().unwrap().contains("task_key"));
+}
