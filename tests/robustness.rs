@@ -176,3 +176,37 @@ fn temporaries_left_in_output_directories_are_removed() {
     assert_eq!(code, 0, "{err}");
     assert!(!s.exists("figures/.repro-999-0.tmp") && !s.exists("tables/.repro-999-1.tmp"));
 }
+
+#[test]
+fn the_cache_never_writes_through_a_link_it_did_not_create() {
+    // runs/, manifests/, an object shard and lock.info replaced by links to a folder (or file)
+    // outside the cache: the run writes nothing there and leaves the link's target as it was.
+    let s = Scratch::new("cache-links");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    assert_eq!(s.run("p.yaml", &[]).0, 0);
+    let outside = s.path("outside");
+    std::fs::create_dir_all(&outside).unwrap();
+    s.write("outside/precious.txt", "mine");
+    let shard = std::fs::read_dir(s.path("cache/objects")).unwrap().next().unwrap().unwrap().path();
+    for p in [s.path("cache/runs"), s.path("cache/manifests"), shard.clone()] {
+        std::fs::remove_dir_all(&p).unwrap();
+        std::os::unix::fs::symlink(&outside, &p).unwrap();
+    }
+    std::fs::remove_file(s.path("cache/lock.info")).unwrap();
+    std::os::unix::fs::symlink(s.path("outside/precious.txt"), s.path("cache/lock.info")).unwrap();
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("is a symbolic link the cache did not create"), "{err}");
+    let names: Vec<String> =
+        std::fs::read_dir(&outside).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().to_string()).collect();
+    assert_eq!(names, ["precious.txt"], "nothing written outside the cache");
+    assert_eq!(std::fs::read_to_string(s.path("outside/precious.txt")).unwrap(), "mine");
+    for p in [s.path("cache/runs"), s.path("cache/manifests"), s.path("cache/lock.info")] {
+        assert!(!std::fs::symlink_metadata(&p).unwrap().file_type().is_symlink(), "{}", p.display());
+    }
+    // The entries that were behind the shard's link are recomputed; the rest come from the cache.
+    assert!(r.count(None, "computed") >= 1);
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.count(None, "computed"), 0);
+}

@@ -116,6 +116,28 @@ pub struct CacheBusy {
     pub holder: String,
 }
 
+/// The cache never writes through a link it did not create: a symbolic link standing where
+/// one of its own directories (or an object shard) belongs is removed (the link only, never
+/// its target), with a warning, and the directory is made afresh when next written.
+fn unlink_foreign_links(root: &Path) {
+    let mut paths: Vec<PathBuf> = ["objects", "manifests", "runs", "tmp", WORKER_TMP, "slurm", "lock.info"]
+        .iter()
+        .map(|d| root.join(d))
+        .collect();
+    if let Ok(shards) = fs::read_dir(root.join("objects")) {
+        paths.extend(shards.filter_map(|e| e.ok().map(|e| e.path())));
+    }
+    if let Ok(pipelines) = fs::read_dir(root.join("manifests")) {
+        paths.extend(pipelines.filter_map(|e| e.ok().map(|e| e.path())));
+    }
+    for p in paths {
+        if fs::symlink_metadata(&p).is_ok_and(|m| m.file_type().is_symlink()) {
+            eprintln!("repro: warning: {} is a symbolic link the cache did not create; removing the link", p.display());
+            let _ = fs::remove_file(&p);
+        }
+    }
+}
+
 impl Cache {
     /// Opens the cache for reading and writing, holding its lock for as long as it lives.
     pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
@@ -148,9 +170,12 @@ impl Cache {
             }
             Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
         }
-        fs::write(root.join("lock.info"), format!("pid {}", std::process::id()))
-            .with_context(|| format!("writing {}", root.join("lock.info").display()))?;
+        unlink_foreign_links(root);
         let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file) };
+        // Written like every other file: a rename replaces whatever stands there, a link
+        // included, without writing through it.
+        write_atomic(&root.join("lock.info"), format!("pid {}", std::process::id()).as_bytes(), &cache.tmp_dir())
+            .with_context(|| format!("writing {}", root.join("lock.info").display()))?;
         // Files left in tmp/ by a killed run are incomplete: nobody else can be writing them.
         let _ = fs::remove_dir_all(cache.tmp_dir());
         fs::create_dir_all(cache.tmp_dir()).with_context(|| format!("creating {}", cache.tmp_dir().display()))?;
