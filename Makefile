@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell verify report report-check
+.PHONY: figures test build schema clean-cache lint bench bench-gamma-c validate-shell verify report report-check readme-example
 
 build:
 	$(CARGO) build
@@ -45,6 +45,12 @@ report-check: build
 	mkdir -p target/report-check && cp ci/report_check.mjs target/report-check/
 	cd target/report-check && { [ -d node_modules/playwright-core ] || npm install --silent --no-save --no-package-lock playwright-core@1; }
 	node target/report-check/report_check.mjs $(ARTIFACTS)/report/index.html $(PIPELINE) $(ARTIFACTS)/report/screenshot.png
+
+# The README's pandas example, run against the tables of `make verify`'s run (needs pandas
+# and pyarrow: pip install pandas pyarrow).
+readme-example:
+	python3 -c "import re,sys; t=open('README.md').read(); sys.stdout.write(re.search(r'\`\`\`python\n(.*?)\`\`\`', t, re.S).group(1))" > target/readme_example.py
+	cd $(ARTIFACTS) && python3 $(CURDIR)/target/readme_example.py
 
 schema: build
 	$(CARGO) run --quiet -- schema > pipelines/schema.json
