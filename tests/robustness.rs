@@ -94,6 +94,11 @@ fn a_second_repro_on_the_same_cache_refuses_or_waits() {
     let (code, err, _) = s.run("fast.yaml", &["--no-wait"]);
     assert_eq!(code, 3, "{err}");
     assert!(err.contains("is in use by another repro (pid"), "{err}");
+    // Deleting the lock file from under the first run does not let a second one in: the
+    // cache directory itself is locked too.
+    std::fs::remove_file(s.path("cache/lock")).unwrap();
+    let (code, err, _) = s.run("fast.yaml", &["--no-wait"]);
+    assert_eq!(code, 3, "{err}");
     // Without --no-wait the second run waits for the first, then runs.
     let t1 = Instant::now();
     let (code, err, r) = s.run("fast.yaml", &[]);
@@ -170,11 +175,16 @@ fn gc_keeps_the_work_of_a_pipeline_outside_pipelines() {
 fn temporaries_left_in_output_directories_are_removed() {
     let s = Scratch::new("tmp-outputs");
     s.write("p.yaml", &sleep_pipeline("[1]", 0, "t"));
-    s.write("figures/.repro-999-0.tmp", "half a figure");
-    s.write("tables/.repro-999-1.tmp", "half a table");
+    // A process id above Linux's limit (2^22) is of no running process: provably stale.
+    s.write("figures/.repro-4999999-0.tmp", "half a figure");
+    s.write("tables/.repro-4999999-1.tmp", "half a table");
+    // This test's own process runs: its temporary is another run's, in flight.
+    let live = format!("tables/.repro-{}-7.tmp", std::process::id());
+    s.write(&live, "another run publishing");
     let (code, err, _) = s.run("p.yaml", &[]);
     assert_eq!(code, 0, "{err}");
-    assert!(!s.exists("figures/.repro-999-0.tmp") && !s.exists("tables/.repro-999-1.tmp"));
+    assert!(!s.exists("figures/.repro-4999999-0.tmp") && !s.exists("tables/.repro-4999999-1.tmp"));
+    assert!(s.exists(&live), "a running process's temporary is left alone");
 }
 
 #[test]

@@ -100,6 +100,7 @@ pub struct Cache {
     pub root: PathBuf,
     tmp: PathBuf,
     _lock: Option<File>,
+    _dir_lock: Option<File>,
 }
 
 /// How to behave when another `repro` holds the cache.
@@ -170,8 +171,27 @@ impl Cache {
             }
             Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
         }
+        // The directory itself is locked too: deleting `lock` from under a run (a second run
+        // then creates and locks a new file) does not let a second run in.
+        let dir = fs::File::open(root).with_context(|| format!("opening the cache directory {}", root.display()))?;
+        match dir.try_lock() {
+            Ok(()) => {}
+            Err(fs::TryLockError::WouldBlock) => {
+                let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
+                let holder = holder.trim().to_string();
+                if mode == LockMode::Refuse {
+                    return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
+                }
+                eprintln!(
+                    "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
+                    root.display()
+                );
+                dir.lock()?;
+            }
+            Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache directory"),
+        }
         unlink_foreign_links(root);
-        let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file) };
+        let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file), _dir_lock: Some(dir) };
         // Written like every other file: a rename replaces whatever stands there, a link
         // included, without writing through it.
         write_atomic(&root.join("lock.info"), format!("pid {}", std::process::id()).as_bytes(), &cache.tmp_dir())
@@ -195,7 +215,7 @@ impl Cache {
 
     /// Opens the cache for reading only, without the lock (status, dry runs).
     pub fn open_read_only(root: &Path) -> Cache {
-        Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: None }
+        Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: None, _dir_lock: None }
     }
 
     /// Opens the cache for a SLURM worker: no lock (the coordinator holds it), writes
@@ -206,7 +226,7 @@ impl Cache {
         }
         let tmp = root.join(WORKER_TMP);
         fs::create_dir_all(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        Ok(Cache { root: root.to_path_buf(), tmp, _lock: None })
+        Ok(Cache { root: root.to_path_buf(), tmp, _lock: None, _dir_lock: None })
     }
 
     pub fn tmp_dir(&self) -> PathBuf {

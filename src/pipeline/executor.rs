@@ -742,13 +742,26 @@ pub fn compute_task(
     (out, dt)
 }
 
-/// Removes temporary files a killed run left while publishing (`.repro-<pid>-<n>.tmp`).
+/// Removes temporary files a killed run left while publishing (`.repro-<pid>-<n>.tmp`), and
+/// only those: a temporary of a process that is still running (another run publishing into
+/// the same folder) is left alone. Where the system does not say which processes run (no
+/// `/proc`), only temporaries older than a day are removed.
 fn remove_stale_temporaries(dirs: &[&Path]) {
+    let procs = Path::new("/proc/self").exists();
     for dir in dirs {
         let Ok(entries) = std::fs::read_dir(dir) else { continue };
         for e in entries.flatten() {
             let name = e.file_name().to_string_lossy().to_string();
-            if name.starts_with(".repro-") && name.ends_with(".tmp") {
+            let Some(pid) = name.strip_prefix(".repro-").and_then(|r| r.strip_suffix(".tmp")) else { continue };
+            let pid = pid.split('-').next().and_then(|p| p.parse::<u32>().ok());
+            let stale = match pid {
+                Some(pid) if procs => pid != std::process::id() && !Path::new(&format!("/proc/{pid}")).exists(),
+                _ => e
+                    .metadata()
+                    .and_then(|m| m.modified())
+                    .is_ok_and(|t| t.elapsed().is_ok_and(|age| age > std::time::Duration::from_secs(86400))),
+            };
+            if stale {
                 let _ = std::fs::remove_file(e.path());
             }
         }
