@@ -85,8 +85,28 @@ fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
+/// A number to 6 significant digits (scientific notation below 1e-3 and from 1e6 on).
 fn number(x: f64) -> String {
-    crate::pipeline::table::format_number(x)
+    let a = x.abs();
+    if a == 0.0 || !a.is_finite() {
+        return crate::pipeline::table::format_number(x);
+    }
+    if !(1e-3..1e6).contains(&a) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+    let t = format!("{x:.decimals$}");
+    if t.contains('.') {
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        t
+    }
+}
+
+/// The task key of a published figure (its table's `task_key` column).
+fn figure_key(figures_dir: &Path, name: &str) -> Option<String> {
+    let df = crate::pipeline::table::read_parquet(&figures_dir.join(format!("{name}.parquet"))).ok()?;
+    strings(&df, "task_key").ok()?.into_iter().next()
 }
 
 /// The chapter a figure title belongs to: "Fig. 3.2: ..." -> "3"; Appendix A is the thesis'
@@ -273,18 +293,20 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
             };
             let up = ancestors(p, &f.name);
             let bearing: Vec<&ClaimRow> = claims.iter().filter(|c| up.contains(&c.stage)).collect();
-            let key = run
-                .as_ref()
-                .and_then(|r| r.tasks.iter().find(|t| t.stage == f.name))
-                .and_then(|t| t.key.clone())
-                .unwrap_or_default();
+            let key = figure_key(&src.figures_dir, &f.name).unwrap_or_else(|| "(not published)".into());
+            // The code behind it: every stage it reads, directly or not, with its kind's version.
+            let lineage: Vec<String> = up
+                .iter()
+                .filter_map(|n| p.stage(n))
+                .map(|st| format!("{} ({}@v{})", st.name, st.kind, code_versions.get(&st.kind).copied().unwrap_or(0)))
+                .collect();
             let _ = writeln!(
                 h,
-                "<figure id=\"figure-{name}\">{svg}<figcaption><b>{}</b><br><span class=\"small\">figures/{name}.svg, data figures/{name}.parquet; figure@v{}; reads {}; task key <code>{}</code></span></figcaption>",
+                "<figure id=\"figure-{name}\">{svg}<figcaption><b>{}</b><br><span class=\"small\">figures/{name}.svg, data figures/{name}.parquet; figure@v{}; task key <code>{}</code>; computed from {}</span></figcaption>",
                 esc(title),
                 code_versions.get("figure").copied().unwrap_or(0),
-                esc(&f.needs.join(", ")),
                 esc(&key),
+                esc(&lineage.join(", ")),
                 name = esc(&f.name),
             );
             if !bearing.is_empty() {
@@ -336,7 +358,9 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     }
 
     // Stage graph.
-    h.push_str("<h2 id=\"graph\">Stages</h2>\n<details><summary>");
+    h.push_str("<h2 id=\"graph\">Stages</h2>\n");
+    h.push_str(&stage_graph(p));
+    h.push_str("<details><summary>");
     let _ = write!(h, "{} stages of {} (kind, code version, what each reads)", p.stages.len(), esc(&p.file));
     h.push_str("</summary><table><tr><th>stage</th><th>kind</th><th>points</th><th>reads</th></tr>\n");
     for s in &p.stages {
@@ -378,6 +402,71 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     std::fs::write(&tmp, h).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, out).with_context(|| format!("writing {}", out.display()))?;
     Ok((shown, n))
+}
+
+/// The stage graph as SVG: a column per depth (the longest chain of stages before it), a box
+/// per stage coloured by what it is (computation, figure), a line per dependency. The claim
+/// stages, which the claims table lists, are left out.
+fn stage_graph(p: &Pipeline) -> String {
+    let shown: Vec<&crate::pipeline::spec::Stage> =
+        p.stages.iter().filter(|s| s.kind != "claim" && s.kind != "claims").collect();
+    let mut depth: BTreeMap<&str, usize> = BTreeMap::new();
+    // Stages are in dependency order after validation (needs come first): one pass suffices,
+    // but a second guards against any other order.
+    for _ in 0..2 {
+        for s in &shown {
+            let d = s.needs.iter().filter_map(|n| depth.get(n.as_str())).map(|d| d + 1).max().unwrap_or(0);
+            depth.insert(&s.name, d);
+        }
+    }
+    let columns = depth.values().max().map_or(1, |d| d + 1);
+    let mut rows = vec![0usize; columns];
+    let mut at: BTreeMap<&str, (f64, f64)> = BTreeMap::new();
+    let (col_w, row_h, box_w) = (190.0, 16.0, 170.0);
+    for s in &shown {
+        let d = depth[s.name.as_str()];
+        at.insert(&s.name, (10.0 + d as f64 * col_w, 10.0 + rows[d] as f64 * row_h));
+        rows[d] += 1;
+    }
+    let height = 20.0 + *rows.iter().max().unwrap_or(&1) as f64 * row_h;
+    let width = 20.0 + columns as f64 * col_w;
+    let mut g = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"graph\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-size=\"9\">\n"
+    );
+    for s in &shown {
+        let (x, y) = at[s.name.as_str()];
+        for n in &s.needs {
+            if let Some(&(x0, y0)) = at.get(n.as_str()) {
+                let _ = writeln!(
+                    g,
+                    "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#bbb\" stroke-width=\"0.6\"/>",
+                    x0 + box_w,
+                    y0 + 6.0,
+                    y + 6.0
+                );
+            }
+        }
+    }
+    for s in &shown {
+        let (x, y) = at[s.name.as_str()];
+        let fill = if s.kind == "figure" { "#e8f0fb" } else { "#f3f3f3" };
+        let _ = writeln!(
+            g,
+            "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{box_w}\" height=\"12\" fill=\"{fill}\" stroke=\"#999\" stroke-width=\"0.5\"><title>{} ({})</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{}</text>",
+            esc(&s.name),
+            esc(&s.kind),
+            x + 3.0,
+            y + 9.0,
+            esc(&s.name)
+        );
+    }
+    g.push_str("</svg>\n");
+    format!(
+        "<p>{} stages ({} figures; the {} claim stages are in the claims table), by depth: each reads stages to its left.</p><div style=\"overflow-x:auto\">{g}</div>\n",
+        shown.len(),
+        shown.iter().filter(|s| s.kind == "figure").count(),
+        p.stages.len() - shown.len()
+    )
 }
 
 /// The run's timeline: one bar per computed task (start to end), a row per stage, as SVG.
@@ -424,4 +513,20 @@ fn timeline(r: &RunReport) -> String {
         left + width
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number;
+
+    #[test]
+    fn numbers_show_six_significant_digits() {
+        assert_eq!(number(2.9059472802519528e-5), "2.90595e-5");
+        assert_eq!(number(-1.5016247), "-1.50162");
+        assert_eq!(number(230.952765), "230.953");
+        assert_eq!(number(1.0), "1");
+        assert_eq!(number(0.125781), "0.125781");
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(2.5e7), "2.50000e7");
+    }
 }

@@ -88,6 +88,9 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     let extra = html.find("id=\"figure-extra\"").unwrap();
     assert!(ch2 < fig && fig < other && other < extra);
     assert!(html[fig..extra].contains("<svg") && html[fig..extra].contains("claim-jkr"));
+    assert!(html[fig..extra].contains("computed from pulloff (theory.maugis_pulloff@v2)"));
+    let key_at = html[fig..extra].find("task key <code>").unwrap() + fig + "task key <code>".len();
+    assert!(html[key_at..key_at + 64].bytes().all(|b| b.is_ascii_hexdigit()), "the figure's task key");
     // Text is escaped, the claims table has one row per claim (and again under the figures).
     assert!(html.contains("JKR limit &lt;at large λ&gt;"));
     assert_eq!(html.matches("<tr id=\"claim-dmt\">").count(), 3);
@@ -96,6 +99,11 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     assert!(html.contains("class=\"timeline\""));
     assert!(html.matches("<rect ").count() >= 3 + 2, "timeline bars");
     assert!(html.contains("blake3 ") && html.contains("git commit"));
+    // The stage graph: a box per stage but the claims, a line per dependency.
+    let graph = &html[html.find("class=\"graph\"").unwrap()..];
+    let graph = &graph[..graph.find("</svg>").unwrap()];
+    assert_eq!(graph.matches("<rect ").count(), 3, "pulloff, fig2_x, extra");
+    assert_eq!(graph.matches("<line ").count(), 2);
 }
 
 #[test]
