@@ -139,6 +139,28 @@ fn unlink_foreign_links(root: &Path) {
     }
 }
 
+/// Takes an exclusive lock on `file` (the cache's lock file or directory): at once, or, held
+/// by another run, refused (`LockMode::Refuse`) or waited for, saying who holds it.
+fn lock_exclusive(file: &File, root: &Path, mode: LockMode) -> Result<()> {
+    match file.try_lock() {
+        Ok(()) => Ok(()),
+        Err(fs::TryLockError::WouldBlock) => {
+            let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
+            let holder = holder.trim().to_string();
+            if mode == LockMode::Refuse {
+                return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
+            }
+            eprintln!(
+                "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
+                root.display()
+            );
+            file.lock()?;
+            Ok(())
+        }
+        Err(fs::TryLockError::Error(e)) => Err(e).context("locking the cache"),
+    }
+}
+
 impl Cache {
     /// Opens the cache for reading and writing, holding its lock for as long as it lives.
     pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
@@ -155,41 +177,11 @@ impl Cache {
                     )
                 },
             )?;
-        match file.try_lock() {
-            Ok(()) => {}
-            Err(fs::TryLockError::WouldBlock) => {
-                let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
-                let holder = holder.trim().to_string();
-                if mode == LockMode::Refuse {
-                    return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
-                }
-                eprintln!(
-                    "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
-                    root.display()
-                );
-                file.lock()?;
-            }
-            Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache"),
-        }
+        lock_exclusive(&file, root, mode)?;
         // The directory itself is locked too: deleting `lock` from under a run (a second run
         // then creates and locks a new file) does not let a second run in.
         let dir = fs::File::open(root).with_context(|| format!("opening the cache directory {}", root.display()))?;
-        match dir.try_lock() {
-            Ok(()) => {}
-            Err(fs::TryLockError::WouldBlock) => {
-                let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
-                let holder = holder.trim().to_string();
-                if mode == LockMode::Refuse {
-                    return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
-                }
-                eprintln!(
-                    "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
-                    root.display()
-                );
-                dir.lock()?;
-            }
-            Err(fs::TryLockError::Error(e)) => return Err(e).context("locking the cache directory"),
-        }
+        lock_exclusive(&dir, root, mode)?;
         unlink_foreign_links(root);
         let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file), _dir_lock: Some(dir) };
         // Written like every other file: a rename replaces whatever stands there, a link
