@@ -148,6 +148,20 @@ enum Command {
         #[command(flatten)]
         cache: CacheArg,
     },
+    /// What changed between two recorded runs (default: the last two): the pipeline and the
+    /// parameters set with -S, the tasks computed and why, and the table values and figures
+    /// whose results differ.
+    Diff {
+        /// The earlier run (a name from `repro runs`, or its file); default: the second last.
+        a: Option<String>,
+        /// The later run; default: the last.
+        b: Option<String>,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Relative changes up to this are not reported.
+        #[arg(long, default_value_t = 1e-12)]
+        rel_tol: f64,
+    },
     /// Run one point of a stage kind and print its output, e.g.
     /// `repro point bem.sweep lambda=1 W=1 k=0.1 V0=1`.
     Point {
@@ -472,6 +486,32 @@ fn main() -> ExitCode {
                 g.removed.len(),
                 bytes as f64 / 1e3
             );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Diff { a, b, cache, rel_tol } => {
+            let runs = executor::run_history(&cache.cache);
+            let pick = |name: &Option<String>,
+                        default_from_end: usize|
+             -> anyhow::Result<repro::pipeline::report::RunReport> {
+                match name {
+                    Some(n) => runs
+                        .iter()
+                        .find(|(p, _)| {
+                            p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
+                                || p.to_string_lossy() == n.as_str()
+                        })
+                        .map(|(_, r)| r.clone())
+                        .ok_or_else(|| UsageError(format!("no recorded run `{n}` (`repro runs` lists them)")).into()),
+                    None => {
+                        runs.len().checked_sub(default_from_end).map(|i| runs[i].1.clone()).ok_or_else(|| {
+                            UsageError(format!("{} recorded run(s): a diff needs two", runs.len())).into()
+                        })
+                    }
+                }
+            };
+            let (ra, rb) = (pick(&a, 2)?, pick(&b, 1)?);
+            let store = repro::pipeline::cache::Cache::open_read_only(&cache.cache);
+            print!("{}", repro::pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
             Ok(ExitCode::SUCCESS)
         }
         Command::Runs { cache } => {

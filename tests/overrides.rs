@@ -58,3 +58,45 @@ fn a_wrong_override_is_refused_before_anything_runs() {
     assert!(err.contains("expected STAGE.PARAM=VALUE"), "{err}");
     assert!(!s.path("cache/runs/last.json").exists());
 }
+
+#[test]
+fn diff_names_the_parameter_set_and_the_results_it_moved() {
+    let s = Scratch::new("diff");
+    s.write(
+        "p.yaml",
+        r#"stages:
+  - name: persson
+    kind: theory.persson
+    params: {inv_k: 2, V0: [0.1, 1, 10]}
+  - name: fig
+    kind: figure
+    needs: [persson]
+    params:
+      title: "mu*"
+      x_label: "V0"
+      y_label: "mu*"
+      log_x: true
+      layers:
+        - data: {from: persson, x: V0, y: mu_star, label: "Persson"}
+"#,
+    );
+    assert_eq!(s.run("p.yaml", &[]).0, 0);
+    let out = s.repro(&["diff"]);
+    assert_eq!(out.status.code(), Some(2), "one run: nothing to compare");
+    assert_eq!(s.run("p.yaml", &["-S", "persson.inv_k=10"]).0, 0);
+    let out = s.repro(&["diff"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("parameters set with -S: (none) -> persson.inv_k=10"), "{text}");
+    assert!(text.contains("persson: 3 (parameters changed: inv_k: 2.0 -> 10.0 (-S))"), "{text}");
+    // mu* at k = 0.1 against k = 0.5: far more than the tolerance, at all three speeds.
+    let line =
+        text.lines().find(|l| l.trim_start().starts_with("persson.mu_star:")).unwrap_or_else(|| panic!("{text}"));
+    assert!(line.ends_with("at 3 point(s)"), "{line}");
+    assert!(text.contains("figure fig changed"), "{text}");
+    assert!(!text.contains("wall_time_s"), "{text}");
+    // The same run again: nothing computed, nothing changed.
+    assert_eq!(s.run("p.yaml", &["-S", "persson.inv_k=10"]).0, 0);
+    let text = String::from_utf8_lossy(&s.repro(&["diff"]).stdout).to_string();
+    assert!(text.contains("computed: 0 task(s)") && text.contains("no table value or figure changed"), "{text}");
+}

@@ -4,6 +4,7 @@
 
 pub mod adaptive;
 pub mod cache;
+pub mod diff;
 pub mod executor;
 pub mod fault;
 pub mod graph;
