@@ -246,3 +246,30 @@ fn every_solver_result_carries_an_error_estimate() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
+
+/// Every column a kind emits (on its reference parameters) is listed in docs/outputs.md with a
+/// unit; the util kinds, which exist to test the orchestrator, aside.
+#[test]
+fn every_output_column_is_documented_with_its_unit() {
+    let docs =
+        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/outputs.md")).unwrap();
+    let mut problems = Vec::new();
+    for (name, _, out) in reference_runs() {
+        if name.starts_with("util.") {
+            continue;
+        }
+        let Some(out) = out else { continue };
+        for column in out.table.column_names() {
+            // A fit's group column is named after the fitted table's column (here `g`).
+            if name == "fit.powerlaw" && column == "g" {
+                continue;
+            }
+            let row = docs.lines().find(|l| l.starts_with(&format!("| `{column}` |")));
+            match row.map(|l| l.split('|').map(str::trim).collect::<Vec<_>>()) {
+                Some(cells) if cells.len() >= 4 && !cells[2].is_empty() && !cells[3].is_empty() => {}
+                _ => problems.push(format!("{name}: `{column}` is not in docs/outputs.md with a unit and a meaning")),
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
