@@ -315,7 +315,7 @@ pub fn decode_entry(key: &str, bytes: &[u8]) -> Result<Entry> {
     if actual != hash {
         bail!(
             "content hash mismatch (stored {}…, actual {}…): truncated or modified",
-            &hash[..hash.len().min(12)],
+            hash.chars().take(12).collect::<String>(),
             &actual[..12]
         );
     }
@@ -347,6 +347,19 @@ pub struct ManifestPoint {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_header_with_a_multibyte_character_in_its_hash_is_rejected_not_a_panic() {
+        // Found by tests/fuzz.rs: a byte flipped into the stored hash made it `…83\u{fffd}ac…`,
+        // and the message sliced it at byte 12, inside the character.
+        let mut bytes =
+            format!("{ENTRY_MAGIC} 47f67883a83\u{fffd}aca3fd900525be58b5f26690ea91c7244d089e18860eeec54389\n")
+                .into_bytes();
+        bytes.extend_from_slice(b"{}");
+        let err = decode_entry(&"0".repeat(64), &bytes).unwrap_err().to_string();
+        assert!(err.contains("content hash mismatch"), "{err}");
+    }
+
     use super::*;
     use crate::pipeline::table::Table;
 
