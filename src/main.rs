@@ -122,10 +122,19 @@ enum Command {
         #[arg(long)]
         explain: bool,
     },
-    /// Print the stage graph in Graphviz dot.
+    /// Print the stage graph in Graphviz dot (`repro dag | dot -Tsvg > dag.svg`).
     Dag {
         #[arg(default_value = DEFAULT_PIPELINE)]
         pipeline: PathBuf,
+        /// Only these stages and what they need (repeatable).
+        #[arg(long = "target")]
+        targets: Vec<String>,
+        /// Fill each stage by its state against the cache: green every task cached, orange
+        /// some would run.
+        #[arg(long)]
+        status: bool,
+        #[command(flatten)]
+        cache: CacheArg,
     },
     /// Remove cache entries that nothing refers to: no task of the pipelines (default: every
     /// pipelines/*.yaml and the pipelines of the recorded runs) and no task of a recorded run
@@ -433,9 +442,40 @@ fn main() -> ExitCode {
             print!("{}", rep.summary(explain));
             Ok(ExitCode::SUCCESS)
         }
-        Command::Dag { pipeline } => {
+        Command::Dag { pipeline, targets, status, cache } => {
             let p = load(&pipeline, &registry)?;
-            print!("{}", graph::to_dot(&p));
+            let mut idx = Vec::new();
+            for t in &targets {
+                match p.stages.iter().position(|s| &s.name == t) {
+                    Some(i) => idx.push(i),
+                    None => return Err(UsageError(format!("--target {t}: no stage of that name in {}", p.file)).into()),
+                }
+            }
+            let only = (!idx.is_empty()).then(|| graph::with_ancestors(&p, &idx));
+            let mut states = std::collections::BTreeMap::new();
+            if status {
+                let opts = RunOptions {
+                    cache_dir: cache.cache,
+                    dry_run: true,
+                    progress: false,
+                    targets,
+                    ..Default::default()
+                };
+                let rep = executor::run(&p, &registry, &opts)?;
+                for t in &rep.tasks {
+                    use repro::pipeline::report::Status as S;
+                    let s = match t.status {
+                        S::Cached | S::Computed => graph::StageStatus::Cached,
+                        S::Failed | S::Skipped => graph::StageStatus::Failed,
+                        S::WouldRun | S::Unknown => graph::StageStatus::Stale,
+                    };
+                    let e = states.entry(t.stage.clone()).or_insert(s);
+                    if s != graph::StageStatus::Cached {
+                        *e = s;
+                    }
+                }
+            }
+            print!("{}", graph::to_dot_with(&p, only.as_ref(), &states));
             Ok(ExitCode::SUCCESS)
         }
         Command::Gc { pipelines, cache, dry_run, older_than } => {

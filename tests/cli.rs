@@ -185,3 +185,30 @@ fn a_dry_run_prints_its_plan_per_stage_and_show_prints_a_head() {
     let out = s.repro(&["show", "tables/sweep.parquet", "--all"]);
     assert!(String::from_utf8_lossy(&out.stdout).lines().next().unwrap().contains("task_key"));
 }
+
+#[test]
+fn dag_shows_a_target_s_stages_coloured_by_their_state() {
+    let s = Scratch::new("dag-status");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    let dot = |args: &[&str]| {
+        let mut a = vec!["dag", "p.yaml"];
+        a.extend_from_slice(args);
+        let out = s.repro(&a);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    // `fig` needs `sweep` only: `after` is not drawn.
+    let g = dot(&["--target", "fig"]);
+    assert!(g.contains("\"sweep\" [") && g.contains("\"fig\" [") && !g.contains("\"after\""), "{g}");
+    // Nothing run yet: stale (orange); after a run: cached (green); a changed sweep: stale again.
+    let node =
+        |g: &str, n: &str| g.lines().find(|l| l.trim_start().starts_with(&format!("\"{n}\" ["))).unwrap().to_string();
+    assert!(node(&dot(&["--status"]), "sweep").contains("#fde2b5"));
+    s.run("p.yaml", &[]);
+    assert!(node(&dot(&["--status"]), "sweep").contains("#d5f0d5"));
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    let g = dot(&["--status"]);
+    assert!(node(&g, "sweep").contains("#fde2b5") && node(&g, "after").contains("#fde2b5"), "{g}");
+    let out = s.repro(&["dag", "p.yaml", "--target", "nope"]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -2,7 +2,7 @@
 
 use super::spec::Pipeline;
 use petgraph::graphmap::DiGraphMap;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Every cycle of the graph (one per strongly connected component), as a list of nodes in
 /// the order of the cycle.
@@ -84,11 +84,46 @@ pub fn with_ancestors(p: &Pipeline, targets: &[usize]) -> BTreeSet<usize> {
 /// The pipeline as a Graphviz digraph: one node per stage (kind and number of points), an
 /// edge per need, and a dashed one from a figure to each sweep that samples its range.
 pub fn to_dot(p: &Pipeline) -> String {
+    to_dot_with(p, None, &BTreeMap::new())
+}
+
+/// The state of a stage's tasks against the cache, for colouring the graph.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StageStatus {
+    /// Every task is in the cache.
+    Cached,
+    /// Some task would run (new, changed, or its inputs are not computed yet).
+    Stale,
+    /// Some task failed in the last attempt.
+    Failed,
+}
+
+/// `to_dot` restricted to the stages `only` (all when None), each node filled by its status
+/// (green cached, orange stale, red failed) when `status` gives one.
+pub fn to_dot_with(p: &Pipeline, only: Option<&BTreeSet<usize>>, status: &BTreeMap<String, StageStatus>) -> String {
+    let shown = |i: usize| only.is_none_or(|o| o.contains(&i));
     let mut s = String::from("digraph pipeline {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n");
-    for st in &p.stages {
-        let shape = if st.kind.starts_with("figure") { ", style=rounded" } else { "" };
+    for (_, st) in p.stages.iter().enumerate().filter(|(i, _)| shown(*i)) {
+        let mut style: Vec<&str> = Vec::new();
+        if st.kind.starts_with("figure") {
+            style.push("rounded");
+        }
+        let fill = match status.get(&st.name) {
+            Some(StageStatus::Cached) => Some("#d5f0d5"),
+            Some(StageStatus::Stale) => Some("#fde2b5"),
+            Some(StageStatus::Failed) => Some("#f6c6c6"),
+            None => None,
+        };
+        if fill.is_some() {
+            style.push("filled");
+        }
+        let attrs = format!(
+            "{}{}",
+            if style.is_empty() { String::new() } else { format!(", style=\"{}\"", style.join(",")) },
+            fill.map_or(String::new(), |c| format!(", fillcolor=\"{c}\""))
+        );
         s.push_str(&format!(
-            "  \"{}\" [label=\"{}\\n{} ({} point{})\"{shape}];\n",
+            "  \"{}\" [label=\"{}\\n{} ({} point{})\"{attrs}];\n",
             st.name,
             st.name,
             st.kind,
@@ -96,14 +131,16 @@ pub fn to_dot(p: &Pipeline) -> String {
             if st.points.len() == 1 { "" } else { "s" }
         ));
     }
-    for st in &p.stages {
-        for n in &st.needs {
+    let index: BTreeMap<&str, usize> = p.stages.iter().enumerate().map(|(i, st)| (st.name.as_str(), i)).collect();
+    let visible = |n: &str| index.get(n).is_some_and(|&i| shown(i));
+    for st in p.stages.iter().filter(|st| visible(&st.name)) {
+        for n in st.needs.iter().filter(|n| visible(n)) {
             s.push_str(&format!("  \"{n}\" -> \"{}\";\n", st.name));
         }
     }
     // A figure whose declared range fixes a sweep's points: dashed, against the data flow.
-    for st in &p.stages {
-        for f in &st.ranges_from {
+    for st in p.stages.iter().filter(|st| visible(&st.name)) {
+        for f in st.ranges_from.iter().filter(|f| visible(f)) {
             s.push_str(&format!("  \"{f}\" -> \"{}\" [style=dashed, constraint=false, label=\"range\"];\n", st.name));
         }
     }
