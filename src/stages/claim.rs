@@ -397,18 +397,13 @@ impl Kind for Claims {
         for c in &p.claims {
             table.append(inputs.table(c)?).with_context(|| format!("claim stage `{c}`"))?;
         }
-        let verdicts: Vec<String> = match table.column("verdict") {
-            Some(ColumnData::Str(v)) => v.clone(),
-            _ => bail!("the claim stages have no `verdict` column"),
+        let text = |name: &str| -> Result<Vec<String>> {
+            match table.column(name) {
+                Some(ColumnData::Str(v)) => Ok(v.clone()),
+                _ => bail!("the claim stages have no `{name}` column"),
+            }
         };
-        let expected: Vec<String> = match table.column("expected") {
-            Some(ColumnData::Str(v)) => v.clone(),
-            _ => bail!("the claim stages have no `expected` column"),
-        };
-        let ids: Vec<String> = match table.column("id") {
-            Some(ColumnData::Str(v)) => v.clone(),
-            _ => bail!("the claim stages have no `id` column"),
-        };
+        let (verdicts, expected, ids) = (text("verdict")?, text("expected")?, text("id")?);
         let n = verdicts.len();
         let reproduced = verdicts.iter().filter(|v| *v == "reproduced").count();
         let explained = verdicts.iter().zip(&expected).filter(|(v, e)| *v == "differs" && *e == "differs").count();
