@@ -206,7 +206,7 @@ mod tests {
             ds_min: 1e-5,
             ds_max: 0.03,
             max_points: 400,
-            newton: Options { max_iterations: 25, tol: 1e-9 },
+            newton: Options { max_iterations: 25, ..Options::default() },
             target_iterations: 5,
         };
         let (pts, ok) =

@@ -372,6 +372,19 @@ const LANDING_DESCENT_ITERATIONS: usize = 150;
 /// starts from before it gives up.
 const SNAP_BACK_STARTS: usize = 4;
 
+/// A failed Newton solve at `delta` from `from` (`failed`), tried again with the monotone
+/// line search before the failure is taken as an answer (past the limit point, no state
+/// there): the nonmonotone search (`indent::NONMONOTONE_WINDOW`) is the faster, not
+/// everywhere the more robust.
+fn confirm_failure(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step, failed: Step) -> Step {
+    let retry = solve_from(model, plate, e, delta, from, Options { window: 1, ..Options::default() });
+    if retry.converged {
+        retry
+    } else {
+        failed
+    }
+}
+
 /// From the converged state `from` to plate displacement `target` in steps halved on
 /// failure (at most `max_cuts` halvings below half the distance); the state at `target`,
 /// or None if a step fails at the smallest size.
@@ -490,6 +503,9 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         let target = (cur.delta + dd).min(opt.delta_max);
         let mut s = solve_from(model, plate, e, target, &cur, Options::default());
         let past_fold = limit_point && !inverted && cycle.buckling.is_none();
+        if !s.converged && cuts >= opt.max_cuts {
+            s = confirm_failure(model, plate, e, target, &cur, s);
+        }
         if !s.converged {
             if cuts < opt.max_cuts {
                 cuts += 1;
@@ -504,13 +520,28 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         s.stable = s.converged && stable(&s);
         let leaves = |s: &Step| !s.stable || (limit_point && is_inverted(model, s));
+        if s.converged && !inverted && cycle.buckling.is_none() && leaves(&s) && cuts < opt.max_cuts {
+            // A step that lands off the flattened branch is taken again shorter, as a failed
+            // one is: the loss of stability is where the shortest step still leaves. A long
+            // step can land on another equilibrium (another slip set, or the inverted branch)
+            // before the branch ends (measured, h/R = 0.06, mu = 0.5, 70 steps to delta/R =
+            // 0.7: with an apex force of 1e-3 F_c the step to delta/R = 0.46 landed on an
+            // unstable state, which put the snap at 37.4 F_c, and with a dimple of 1e-3 h a
+            // state of the bisection did, at 34.1 F_c; with 140 or 280 steps the branches run
+            // on to 39.46 F_c at delta/R = 0.478 and 36.36 F_c at 0.450).
+            cuts += 1;
+            dd *= 0.5;
+            continue;
+        }
         if !inverted && leaves(&s) {
             let retry = cycle.buckling.is_some();
             let from = if !retry {
-                // Bisect for the last stable flattened state: F_buckling.
+                // Bisect for the last stable flattened state: F_buckling, located to
+                // base / 2^bisections (the step is already base / 2^cuts).
                 let (mut lo, mut hi) = (cur.clone(), s.clone());
-                for _ in 0..opt.bisections {
-                    let mut mid = solve_from(model, plate, e, 0.5 * (lo.delta + hi.delta), &lo, Options::default());
+                for _ in cuts..opt.bisections {
+                    let at = 0.5 * (lo.delta + hi.delta);
+                    let mut mid = solve_from(model, plate, e, at, &lo, Options::default());
                     if !mid.converged && !limit_point {
                         break;
                     }
