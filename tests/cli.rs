@@ -212,3 +212,48 @@ fn dag_shows_a_target_s_stages_coloured_by_their_state() {
     let out = s.repro(&["dag", "p.yaml", "--target", "nope"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn published_tables_carry_their_units_and_fixed_parameters() {
+    // Every published Parquet file says, in its key/value metadata, the unit and meaning of
+    // each column (from docs/outputs.md) and the parameters its points share (a figure's
+    // axis labels among them), for a reader who has only the file.
+    let s = Scratch::new("metadata");
+    s.run_pipeline(
+        r#"stages:
+  - name: pulloff
+    kind: theory.maugis_pulloff
+    params: {lambda: [0.5, 1]}
+  - name: fig
+    kind: figure
+    needs: [pulloff]
+    params:
+      title: "pull-off"
+      x_label: "λ"
+      y_label: "P̄ pull-off"
+      layers:
+        - data: {from: pulloff, x: lambda, y: P_bar_pulloff, label: "Maugis"}
+"#,
+    );
+    let meta = |rel: &str| -> std::collections::BTreeMap<String, serde_json::Value> {
+        repro::pipeline::table::read_parquet_metadata(&s.path(rel))
+            .unwrap()
+            .into_iter()
+            .filter(|(k, _)| k == "repro.columns" || k == "repro.params")
+            .map(|(k, v)| (k, serde_json::from_str(&v).unwrap()))
+            .collect()
+    };
+    let table = meta("tables/pulloff.parquet");
+    let columns = &table["repro.columns"];
+    assert_eq!(columns["lambda"]["unit"], "1");
+    assert_eq!(columns["P_bar_pulloff"]["unit"], "F/(π w R)");
+    assert!(columns["P_bar_pulloff"]["meaning"].as_str().unwrap().contains("pull-off"), "{columns}");
+    assert_eq!(columns["wall_time_s"]["unit"], "s");
+    // The swept parameter is not a fixed one.
+    assert!(table["repro.params"].get("lambda").is_none(), "{}", table["repro.params"]);
+    let figure = meta("figures/fig.parquet");
+    assert_eq!(figure["repro.params"]["x_label"], "λ");
+    assert_eq!(figure["repro.params"]["y_label"], "P̄ pull-off");
+    assert_eq!(figure["repro.columns"]["x"]["unit"], "units of the x column");
+    assert_eq!(figure["repro.columns"]["series"]["unit"], "text");
+}

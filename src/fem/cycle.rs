@@ -520,9 +520,10 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         s.stable = s.converged && stable(&s);
         let leaves = |s: &Step| !s.stable || (limit_point && is_inverted(model, s));
-        if s.converged && !inverted && cycle.buckling.is_none() && leaves(&s) && cuts < opt.max_cuts {
-            // A step that lands off the flattened branch is taken again shorter, as a failed
-            // one is: the loss of stability is where the shortest step still leaves. A long
+        if limit_point && s.converged && !inverted && cycle.buckling.is_none() && leaves(&s) && cuts < opt.max_cuts {
+            // Under the tangent criterion a step that lands off the flattened branch is taken
+            // again shorter, as a failed one is: the loss of stability is where the shortest
+            // step still leaves (the lift threshold's test is left as it was). A long
             // step can land on another equilibrium (another slip set, or the inverted branch)
             // before the branch ends (measured, h/R = 0.06, mu = 0.5, 70 steps to delta/R =
             // 0.7: with an apex force of 1e-3 F_c the step to delta/R = 0.46 landed on an
@@ -537,9 +538,11 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             let retry = cycle.buckling.is_some();
             let from = if !retry {
                 // Bisect for the last stable flattened state: F_buckling, located to
-                // base / 2^bisections (the step is already base / 2^cuts).
+                // base / 2^bisections (under the tangent criterion the step is already
+                // base / 2^cuts).
                 let (mut lo, mut hi) = (cur.clone(), s.clone());
-                for _ in cuts..opt.bisections {
+                let halved = if limit_point { cuts } else { 0 };
+                for _ in halved..opt.bisections {
                     let at = 0.5 * (lo.delta + hi.delta);
                     let mut mid = solve_from(model, plate, e, at, &lo, Options::default());
                     if !mid.converged && !limit_point {

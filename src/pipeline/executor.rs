@@ -768,6 +768,18 @@ fn remove_stale_temporaries(dirs: &[&Path]) {
     }
 }
 
+/// The parameters every point of `stage` shares, canonical (defaults filled in): all of
+/// them for an unswept stage, all but the swept ones for a sweep.
+fn fixed_params(stage: &Stage) -> serde_json::Map<String, serde_json::Value> {
+    let mut points = stage.points.iter().filter_map(|p| p.params.as_object());
+    let Some(first) = points.next() else { return Default::default() };
+    let mut fixed = first.clone();
+    for other in points {
+        fixed.retain(|k, v| other.get(k) == Some(v));
+    }
+    fixed
+}
+
 /// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
 /// `figures/<stage>.<ext>` for each artifact and `figures/<stage>.parquet` for its data.
 fn publish_stage(
@@ -783,11 +795,20 @@ fn publish_stage(
     let is_figure = points.iter().any(|(_, o)| !o.artifacts.is_empty());
     let table = provenance_table(points, times, &code_version, is_figure)?;
     let keys: Vec<&str> = points.iter().map(|(k, _)| k.as_str()).collect();
+    // What a reader needs beside the numbers: the stage's parameters as the pipeline gives
+    // them (a figure's axis labels among them) and every column's unit and meaning.
+    let columns: serde_json::Map<String, serde_json::Value> = table
+        .column_names()
+        .into_iter()
+        .filter_map(|c| Some((c.to_string(), serde_json::to_value(registry.column(&c)?).ok()?)))
+        .collect();
     let metadata = vec![
         ("repro.pipeline".to_string(), p.file.clone()),
         ("repro.stage".to_string(), stage.name.clone()),
         ("repro.code_version".to_string(), code_version),
         ("repro.task_keys".to_string(), keys.join(",")),
+        ("repro.params".to_string(), serde_json::to_string(&fixed_params(stage))?),
+        ("repro.columns".to_string(), serde_json::to_string(&columns)?),
     ];
     if is_figure && points.len() != 1 {
         bail!("figure stage `{}` has {} points; a figure stage takes no sweep", stage.name, points.len());

@@ -168,10 +168,19 @@ impl<K: Kind> DynKind for Typed<K> {
     }
 }
 
-/// The stage kinds a pipeline may use, by name.
+/// The stage kinds a pipeline may use, by name, and what their output columns mean.
 #[derive(Default)]
 pub struct Registry {
     kinds: BTreeMap<&'static str, Box<dyn DynKind>>,
+    columns: BTreeMap<String, ColumnDoc>,
+}
+
+/// The unit (or normalisation) and meaning of an output column, written beside every
+/// published table in its Parquet metadata (`repro.columns`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct ColumnDoc {
+    pub unit: String,
+    pub meaning: String,
 }
 
 impl Registry {
@@ -195,5 +204,18 @@ impl Registry {
 
     pub fn iter(&self) -> impl Iterator<Item = &dyn DynKind> + '_ {
         self.kinds.values().map(|b| b.as_ref())
+    }
+
+    /// Documents output columns (the first description of a name is kept).
+    pub fn document_columns(&mut self, docs: impl IntoIterator<Item = (String, ColumnDoc)>) -> &mut Self {
+        for (name, doc) in docs {
+            self.columns.entry(name).or_insert(doc);
+        }
+        self
+    }
+
+    /// The unit and meaning of an output column, if documented.
+    pub fn column(&self, name: &str) -> Option<&ColumnDoc> {
+        self.columns.get(name)
     }
 }

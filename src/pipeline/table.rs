@@ -206,6 +206,20 @@ pub fn read_parquet(path: &std::path::Path) -> Result<polars::prelude::DataFrame
     Ok(ParquetReader::new(f).finish()?)
 }
 
+/// The file-level key/value metadata of a Parquet file (`to_parquet_bytes`' `metadata`).
+pub fn read_parquet_metadata(path: &std::path::Path) -> Result<Vec<(String, String)>> {
+    use polars::prelude::*;
+    let f = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let mut reader = ParquetReader::new(f);
+    let meta = reader.get_metadata()?;
+    Ok(meta
+        .key_value_metadata()
+        .iter()
+        .flatten()
+        .map(|kv| (kv.key.clone(), kv.value.clone().unwrap_or_default()))
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,11 +15,31 @@ pub mod shell_form;
 pub mod theory;
 pub mod util;
 
-use crate::pipeline::kind::Registry;
+use crate::pipeline::kind::{ColumnDoc, Registry};
+
+/// The output columns' units and meanings: the tables of `docs/outputs.md` (rows
+/// "| `name` | unit | meaning |"), the one description of every column the kinds write
+/// (`tests/kind_versions.rs` checks that each is there).
+const OUTPUT_COLUMNS: &str = include_str!("../../docs/outputs.md");
+
+/// The documented output columns, in the order of `docs/outputs.md`.
+pub fn documented_columns() -> Vec<(String, ColumnDoc)> {
+    OUTPUT_COLUMNS
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            let (unit, meaning) = (cells.get(2)?, cells.get(3)?);
+            (cells.len() >= 5 && !unit.is_empty() && !meaning.is_empty())
+                .then(|| (name.to_string(), ColumnDoc { unit: unit.to_string(), meaning: meaning.to_string() }))
+        })
+        .collect()
+}
 
 /// Every stage kind a pipeline may use.
 pub fn registry() -> Registry {
     let mut r = Registry::new();
+    r.document_columns(documented_columns());
     theory::register(&mut r);
     bem::register(&mut r);
     fem::register(&mut r);
