@@ -47,6 +47,45 @@ fn corrupted_or_truncated_entries_are_reported_and_recomputed() {
 }
 
 #[test]
+fn a_directory_standing_for_an_entry_or_an_output_is_moved_aside_and_the_damage_heals() {
+    // A directory where a cache entry and where a published table belong (with a file in
+    // each, which must survive): the next run recomputes the entry, publishes the table, says
+    // where it moved each, and exits 0; the run after it is all cached.
+    let s = Scratch::new("dir-damage");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    s.run("p.yaml", &[]);
+    let figures = snapshot(&s.path("figures"));
+    let entry = entry_files(&s)[0].clone();
+    let table = s.path("tables/sweep.parquet");
+    for path in [&entry, &table] {
+        std::fs::remove_file(path).unwrap();
+        std::fs::create_dir(path).unwrap();
+        std::fs::write(path.join("keep"), b"user data").unwrap();
+    }
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err.matches("was a directory; moved aside to").count(), 2, "{err}");
+    assert!(entry.is_file() && table.is_file());
+    assert_eq!(r.count(None, "failed"), 0);
+    assert_eq!(snapshot(&s.path("figures")), figures);
+    let dir = |p: &std::path::Path| -> Vec<std::path::PathBuf> {
+        std::fs::read_dir(p.parent().unwrap()).unwrap().flatten().map(|e| e.path()).collect()
+    };
+    for path in [&entry, &table] {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let aside: Vec<_> = dir(path)
+            .into_iter()
+            .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with(&format!("{name}.damaged-")))
+            .collect();
+        assert_eq!(aside.len(), 1, "{aside:?}");
+        assert_eq!(std::fs::read(aside[0].join("keep")).unwrap(), b"user data");
+    }
+    let (code, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0);
+    assert_eq!(r.count(None, "computed"), 0, "healed: nothing to recompute");
+}
+
+#[test]
 fn a_killed_run_resumes_and_ends_with_the_same_outputs() {
     let s = Scratch::new("killed");
     let yaml = sleep_pipeline("{linspace: [1, 24, 24]}", 150, "t");

@@ -44,6 +44,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
         f.write_all(bytes)?;
         f.sync_all()?;
         super::fault::point("atomic.before_rename");
+        move_aside_non_file(path, n)?;
         fs::rename(&tmp, path)?;
         super::fault::point("atomic.after_rename");
         Ok(())
@@ -52,6 +53,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
         let _ = fs::remove_file(&tmp);
     }
     result.with_context(|| format!("writing {}", path.display()))
+}
+
+/// Whatever stands at `path` and is neither a file nor a link (a directory, a fifo, a
+/// socket) is renamed to `<path>.damaged-<pid>-<n>` beside it, with a warning, so that the
+/// write lands: damage heals on the next write instead of failing every run, and nothing is
+/// deleted. (A link is replaced by the rename itself, never followed.)
+fn move_aside_non_file(path: &Path, n: u64) -> Result<()> {
+    let Ok(meta) = fs::symlink_metadata(path) else { return Ok(()) };
+    let kind = meta.file_type();
+    if kind.is_file() || kind.is_symlink() {
+        return Ok(());
+    }
+    let mut aside = path.as_os_str().to_owned();
+    aside.push(format!(".damaged-{}-{n}", std::process::id()));
+    let aside = std::path::PathBuf::from(aside);
+    fs::rename(path, &aside)?;
+    let what = if kind.is_dir() { "a directory" } else { "not a file" };
+    eprintln!("repro: warning: {} was {what}; moved aside to {}", path.display(), aside.display());
+    Ok(())
 }
 
 /// A cached task result.
