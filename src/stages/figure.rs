@@ -179,6 +179,9 @@ struct Series {
     errors: Vec<f64>,
     /// Indices of `points` before which the line is broken.
     breaks: Vec<usize>,
+    /// The layer's `group_by` column, the group's value as shown, and as a number where
+    /// the column is numeric.
+    group: Option<(String, String, Option<f64>)>,
 }
 
 /// One group's curve while a layer's rows are read: its first row, its points, where its
@@ -249,6 +252,15 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
                     label = label.replace(&pat, &col.display_at(first_row));
                 }
             }
+            let group = layer.group_by.as_ref().zip(group).map(|(name, col)| {
+                let value = match col {
+                    ColumnData::F64(v) => Some(v[first_row]),
+                    ColumnData::I64(v) => Some(v[first_row] as f64),
+                    ColumnData::Bool(v) => Some(f64::from(u8::from(v[first_row]))),
+                    ColumnData::Str(_) => None,
+                };
+                (name.clone(), col.display_at(first_row), value)
+            });
             Series {
                 label,
                 style: layer.style,
@@ -258,6 +270,7 @@ fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
                 points,
                 errors,
                 breaks,
+                group,
             }
         })
         .collect())
@@ -281,6 +294,7 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
         points,
         errors: Vec::new(),
         breaks: Vec::new(),
+        group: None,
     }
 }
 
@@ -544,7 +558,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 11;
+    const VERSION: u32 = 12;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     type Params = FigureParams;
 
@@ -654,6 +668,29 @@ impl Kind for Figure {
         } else {
             table
         };
+        // The group of each point where a layer groups its rows: the grouping column, its
+        // value as shown, and as a number (0 where not numeric) for filtering in a data frame.
+        let table = if series.iter().any(|s| s.group.is_some()) {
+            let per_point = |f: &dyn Fn(&Series) -> String| -> Vec<String> {
+                series.iter().flat_map(|s| std::iter::repeat_n(f(s), s.points.len())).collect()
+            };
+            let values: Vec<f64> = series
+                .iter()
+                .flat_map(|s| {
+                    let v = s.group.as_ref().and_then(|g| g.2).filter(|v| v.is_finite()).unwrap_or(0.0);
+                    std::iter::repeat_n(v, s.points.len())
+                })
+                .collect();
+            table
+                .with(
+                    "group_by",
+                    ColumnData::Str(per_point(&|s| s.group.as_ref().map_or(String::new(), |g| g.0.clone()))),
+                )
+                .with("group", ColumnData::Str(per_point(&|s| s.group.as_ref().map_or(String::new(), |g| g.1.clone()))))
+                .with_f64("group_value", values)
+        } else {
+            table
+        };
         let mut out = Output::from(table);
         out.artifacts.insert("svg".into(), svg);
         Ok(out)
@@ -732,6 +769,42 @@ mod tests {
         let fig = test_figure(vec![Layer::Data(l.clone())]);
         let lines = |series: &[Series]| render(&fig, series).unwrap().matches("<polyline").count();
         assert_eq!(lines(&broken), lines(&joined) + 1);
+    }
+
+    #[test]
+    fn each_point_carries_its_group_as_text_and_number() {
+        // Two numeric groups (g = 0.25 and 1.5) and a guide without a group: the table has
+        // the grouping column's name, the group as shown and as a number, empty and 0 for the
+        // guide's points.
+        let t = Table::new()
+            .with_f64("x", vec![1.0, 2.0, 1.0])
+            .with_f64("a", vec![1.0, 2.0, 3.0])
+            .with_f64("g", vec![0.25, 0.25, 1.5]);
+        let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+        let guide = GuideLayer {
+            slope: 1.0,
+            through: [1.0, 1.0],
+            x_from: 1.0,
+            x_to: 2.0,
+            label: "guide".into(),
+            style: Style::Dashed,
+        };
+        let fig = test_figure(vec![Layer::Data(layer("a", None)), Layer::Guide(guide)]);
+        let out = Figure::run(&fig, &inputs).unwrap();
+        let n = out.table.n_rows();
+        assert_eq!(n, 3 + 50);
+        let text = |c: &str| match out.table.column(c).unwrap() {
+            ColumnData::Str(v) => v.clone(),
+            _ => panic!("{c} is not text"),
+        };
+        assert_eq!(&text("group_by")[..4], ["g", "g", "g", ""]);
+        assert_eq!(&text("group")[..4], ["0.25", "0.25", "1.5", ""]);
+        assert_eq!(&out.table.f64_column("group_value").unwrap()[..4], [0.25, 0.25, 1.5, 0.0]);
+        // Without a grouped layer there are no group columns.
+        let mut plain = layer("a", None);
+        plain.group_by = None;
+        let out = Figure::run(&test_figure(vec![Layer::Data(plain)]), &inputs).unwrap();
+        assert!(out.table.column("group_by").is_none());
     }
 
     #[test]
