@@ -585,7 +585,7 @@ fn main() -> ExitCode {
             let mut yaml = String::new();
             let mut seen = std::collections::BTreeSet::new();
             for p in &params {
-                let Some((name, value)) = p.split_once('=') else {
+                let Some((name, value)) = p.split_once('=').filter(|(name, _)| !name.trim().is_empty()) else {
                     return Err(UsageError(format!("`{p}`: parameters are NAME=VALUE")).into());
                 };
                 if !seen.insert(name) {

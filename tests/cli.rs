@@ -104,6 +104,11 @@ fn point_rejects_a_repeated_parameter_and_names_the_kind_of_a_missing_one() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bem.sweep: missing field `lambda`") && !err.contains("parameter ``"), "{err}");
+    // A parameter without a name is refused as such, not passed on as the field ``.
+    let out = s.repro(&["point", "util.sleep", "=2"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("`=2`: parameters are NAME=VALUE") && !err.contains("``"), "{err}");
     // A well-formed call still runs.
     let out = s.repro(&["point", "util.sleep", "x=1"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
