@@ -248,6 +248,8 @@ fn published_tables_carry_their_units_and_fixed_parameters() {
             .map(|(k, v)| (k, serde_json::from_str(&v).unwrap()))
             .collect()
     };
+    let raw = repro::pipeline::table::read_parquet_metadata(&s.path("tables/pulloff.parquet")).unwrap();
+    assert!(raw.iter().any(|(k, v)| k == "repro.version" && v == env!("CARGO_PKG_VERSION")), "{raw:?}");
     let table = meta("tables/pulloff.parquet");
     let columns = &table["repro.columns"];
     assert_eq!(columns["lambda"]["unit"], "1");
@@ -261,4 +263,31 @@ fn published_tables_carry_their_units_and_fixed_parameters() {
     assert_eq!(figure["repro.params"]["y_label"], "P̄ pull-off");
     assert_eq!(figure["repro.columns"]["x"]["unit"], "units of the x column");
     assert_eq!(figure["repro.columns"]["series"]["unit"], "text");
+}
+
+#[test]
+fn the_task_time_column_sums_to_the_cost_of_a_stage() {
+    // A stage of three tasks of many rows each: `wall_time_s` repeats each task's time on
+    // its rows, `task_time_s` holds it once, so that its sum is the stage's cost.
+    let s = Scratch::new("task-time");
+    s.run_pipeline(
+        "stages:
+  - name: curves
+    kind: theory.maugis_dugdale
+    params: {lambda: [0.5, 1, 2]}
+",
+    );
+    let t = s.table("curves");
+    let keys = common::strings(&t, "task_key");
+    let (wall, task) = (common::column(&t, "wall_time_s"), common::column(&t, "task_time_s"));
+    assert!(t.height() > 3 * 10, "{}", t.height());
+    let mut per_task = std::collections::BTreeMap::new();
+    for (i, k) in keys.iter().enumerate() {
+        let first = !per_task.contains_key(k);
+        per_task.entry(k.clone()).or_insert(wall[i]);
+        assert_eq!(task[i], if first { wall[i] } else { 0.0 }, "row {i}");
+    }
+    assert_eq!(per_task.len(), 3);
+    let total: f64 = per_task.values().sum();
+    assert!((task.iter().sum::<f64>() - total).abs() <= 1e-12 * total.max(1e-300));
 }

@@ -158,8 +158,9 @@ fn short(s: &str) -> String {
 }
 
 /// Adds the per-row task key and the code version to a stage's table, for publishing, and
-/// the task's wall time as `wall_time_s` where the kind does not report its own (not to a
-/// figure's data: its numbers are those of the stages it draws).
+/// the task's wall time as `wall_time_s` where the kind does not report its own, and as
+/// `task_time_s` on the task's first row only (0 on the others: the column sums to the
+/// stage's cost); not to a figure's data: its numbers are those of the stages it draws.
 fn provenance_table(points: &[(Hash, Output)], times: &[f64], code_version: &str, figure: bool) -> Result<Table> {
     let mut table = Table::new();
     for ((key, out), &dt) in points.iter().zip(times) {
@@ -167,6 +168,9 @@ fn provenance_table(points: &[(Hash, Output)], times: &[f64], code_version: &str
         let mut t = out.table.clone();
         if !figure && t.column("wall_time_s").is_none() {
             t = t.with_f64("wall_time_s", vec![dt; n]);
+        }
+        if !figure {
+            t = t.with_f64("task_time_s", (0..n).map(|i| if i == 0 { dt } else { 0.0 }).collect());
         }
         let t = t
             .with("task_key", ColumnData::Str(vec![key.clone(); n]))
@@ -806,6 +810,7 @@ fn publish_stage(
         ("repro.pipeline".to_string(), p.file.clone()),
         ("repro.stage".to_string(), stage.name.clone()),
         ("repro.code_version".to_string(), code_version),
+        ("repro.version".to_string(), env!("CARGO_PKG_VERSION").to_string()),
         ("repro.task_keys".to_string(), keys.join(",")),
         ("repro.params".to_string(), serde_json::to_string(&fixed_params(stage))?),
         ("repro.columns".to_string(), serde_json::to_string(&columns)?),
