@@ -34,6 +34,9 @@ pub enum LegendPosition {
     UpperLeft,
     LowerRight,
     LowerLeft,
+    /// Where the legend box covers the fewest drawn points, lines and shaded areas: the
+    /// corners first, then the middles of the sides.
+    Auto,
 }
 
 /// Curves from a stage's table.
@@ -540,6 +543,42 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
             LegendPosition::LowerRight => SeriesLabelPosition::LowerRight,
             LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
+            LegendPosition::Auto => {
+                // The drawn marks in pixels of the plotting area: points, lines sampled
+                // between them, and the shaded region under an area's line.
+                let base = chart.plotting_area().get_base_pixel();
+                let px = |q: (f64, f64)| {
+                    let (x, y) = chart.backend_coord(&q);
+                    (x - base.0, y - base.1)
+                };
+                let mut marks = Vec::new();
+                for s in series {
+                    let q: Vec<(f64, f64)> = s
+                        .points
+                        .iter()
+                        .map(|&(x, y)| (tx(x), ty(y)))
+                        .filter(|&(x, y)| x.is_finite() && y.is_finite() && x >= x0 && x <= x1 && y >= y0 && y <= y1)
+                        .collect();
+                    for (k, &a) in q.iter().enumerate() {
+                        marks.push(px(a));
+                        if s.style == Style::Area {
+                            marks.extend((1..=12).map(|j| px((a.0, a.1 - (a.1 - y0) * j as f64 / 12.0))));
+                        }
+                        if s.style != Style::Points {
+                            if let Some(&b) = q.get(k + 1) {
+                                marks.extend((1..16).map(|j| {
+                                    let t = j as f64 / 16.0;
+                                    px((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t))
+                                }));
+                            }
+                        }
+                    }
+                }
+                let labels: Vec<&str> =
+                    series.iter().filter(|s| !s.label.is_empty()).map(|s| s.label.as_str()).collect();
+                let area = chart.plotting_area().dim_in_pixel();
+                least_covering_legend(&labels, area, &marks)
+            }
         };
         chart
             .configure_series_labels()
@@ -552,6 +591,41 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
         root.present().map_err(|e| anyhow::anyhow!("{e:?}"))?;
     }
     Ok(svg)
+}
+
+/// The legend position (as `configure_series_labels` lays it out: a box of the labels at
+/// 14 px plus the 30 px sample and 10 px margins, 5 px from the plotting area's edges) that
+/// covers the fewest of `marks` (pixels of the plotting area of size `area`), the corners
+/// first on a tie.
+fn least_covering_legend(labels: &[&str], area: (u32, u32), marks: &[(i32, i32)]) -> SeriesLabelPosition {
+    use SeriesLabelPosition::*;
+    let candidates = [UpperRight, UpperLeft, LowerRight, LowerLeft, MiddleRight, MiddleLeft, UpperMiddle, LowerMiddle];
+    let font: TextStyle = ("sans-serif", 14).into_font().into();
+    let mut text = MultiLineText::<_, &str>::new((0, 0), &font);
+    for l in labels {
+        text.push_line(*l);
+    }
+    let Ok((w, h)) = text.estimate_dimension() else { return UpperRight };
+    let (w, h) = (w + 30 + 20, h + 20);
+    let (aw, ah) = (area.0 as i32, area.1 as i32);
+    let corner = |p: &SeriesLabelPosition| -> (i32, i32) {
+        let x = match p {
+            UpperLeft | MiddleLeft | LowerLeft => 5,
+            UpperMiddle | MiddleMiddle | LowerMiddle => (aw - w) / 2,
+            _ => aw - w - 5,
+        };
+        let y = match p {
+            UpperLeft | UpperMiddle | UpperRight => 5,
+            MiddleLeft | MiddleMiddle | MiddleRight => (ah - h) / 2,
+            _ => ah - h - 5,
+        };
+        (x, y)
+    };
+    let covered = |p: &SeriesLabelPosition| {
+        let (x, y) = corner(p);
+        marks.iter().filter(|&&(mx, my)| mx >= x && mx <= x + w && my >= y && my <= y + h).count()
+    };
+    candidates.into_iter().min_by_key(covered).unwrap_or(UpperRight)
 }
 
 pub struct Figure;
@@ -805,6 +879,28 @@ mod tests {
         plain.group_by = None;
         let out = Figure::run(&test_figure(vec![Layer::Data(plain)]), &inputs).unwrap();
         assert!(out.table.column("group_by").is_none());
+    }
+
+    #[test]
+    fn the_automatic_legend_goes_where_it_covers_nothing() {
+        // A 700 x 400 plotting area: marks filling the upper half push the legend to a lower
+        // corner; marks everywhere but the middle of the right side put it there.
+        use SeriesLabelPosition as P;
+        let labels = ["a curve", "another curve"];
+        let area = (700u32, 400u32);
+        let grid = |keep: &dyn Fn(i32, i32) -> bool| -> Vec<(i32, i32)> {
+            (0..700)
+                .step_by(7)
+                .flat_map(|x| (0..400).step_by(7).map(move |y| (x, y)))
+                .filter(|&(x, y)| keep(x, y))
+                .collect()
+        };
+        let upper = grid(&|_, y| y < 200);
+        assert!(matches!(least_covering_legend(&labels, area, &upper), P::LowerRight));
+        let all_but_middle_right = grid(&|x, y| !(x > 450 && (150..250).contains(&y)));
+        assert!(matches!(least_covering_legend(&labels, area, &all_but_middle_right), P::MiddleRight));
+        // Nothing drawn: the first corner.
+        assert!(matches!(least_covering_legend(&labels, area, &[]), P::UpperRight));
     }
 
     #[test]
