@@ -525,11 +525,12 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             // again shorter, as a failed one is: the loss of stability is where the shortest
             // step still leaves (the lift threshold's test is left as it was). A long
             // step can land on another equilibrium (another slip set, or the inverted branch)
-            // before the branch ends (measured, h/R = 0.06, mu = 0.5, 70 steps to delta/R =
-            // 0.7: with an apex force of 1e-3 F_c the step to delta/R = 0.46 landed on an
-            // unstable state, which put the snap at 37.4 F_c, and with a dimple of 1e-3 h a
-            // state of the bisection did, at 34.1 F_c; with 140 or 280 steps the branches run
-            // on to 39.46 F_c at delta/R = 0.478 and 36.36 F_c at 0.450).
+            // before the branch ends (measured, h/R = 0.06, mu = 0.5, apex force 1e-3 F_c,
+            // 70 steps to delta/R = 0.7: the step to delta/R = 0.44 landed on an unstable
+            // state, which put the snap at 35.2 F_c; with 105, 140 or 280 steps the branch
+            // runs on to 39.46 F_c at delta/R = 0.478. Solving only the step again from the
+            // bisection's last stable state is not enough: with a dimple of 1e-3 h a state
+            // of the bisection itself landed off the branch, at 34.1 F_c instead of 36.36).
             cuts += 1;
             dd *= 0.5;
             continue;
