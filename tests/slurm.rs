@@ -48,7 +48,7 @@ fn table_values(s: &Scratch, stage: &str) -> Vec<(String, String)> {
     let df = s.table(stage);
     df.columns()
         .iter()
-        .filter(|c| c.name().as_str() != "wall_time_s")
+        .filter(|c| !c.name().as_str().ends_with("_time_s"))
         .map(|c| (c.name().to_string(), format!("{:?}", c.as_materialized_series())))
         .collect()
 }

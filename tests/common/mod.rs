@@ -144,8 +144,9 @@ pub fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     out
 }
 
-/// Like `snapshot`, but a table (`.parquet`) is its contents without the timing column
-/// `wall_time_s` (which differs between two computations of the same task).
+/// Like `snapshot`, but a table (`.parquet`) is its contents without the timing columns
+/// (`*_time_s`, as `repro verify` leaves them out: they differ between two computations of
+/// the same task).
 pub fn snapshot_untimed(dir: &Path) -> Vec<(String, Vec<u8>)> {
     snapshot(dir)
         .into_iter()
@@ -156,7 +157,7 @@ pub fn snapshot_untimed(dir: &Path) -> Vec<(String, Vec<u8>)> {
             let df = repro::pipeline::table::read_parquet(&dir.join(&name)).unwrap();
             let mut text = String::new();
             for name in df.get_column_names() {
-                if name.as_str() == "wall_time_s" {
+                if name.as_str().ends_with("_time_s") {
                     continue;
                 }
                 let c = df.column(name).unwrap();
