@@ -374,8 +374,8 @@ const SNAP_BACK_STARTS: usize = 4;
 
 /// A failed Newton solve at `delta` from `from` (`failed`), tried again with the monotone
 /// line search before the failure is taken as an answer (past the limit point, no state
-/// there): the nonmonotone search (`indent::NONMONOTONE_WINDOW`) is the faster, not
-/// everywhere the more robust.
+/// there): one more solve, only where a failure decides the result, in case the nonmonotone
+/// search (`indent::NONMONOTONE_WINDOW`) missed a state the monotone one finds.
 fn confirm_failure(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step, failed: Step) -> Step {
     let retry = solve_from(model, plate, e, delta, from, Options { window: 1, ..Options::default() });
     if retry.converged {
