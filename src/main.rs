@@ -284,7 +284,7 @@ fn fail(e: anyhow::Error) -> ExitCode {
 }
 
 /// A kind's parameters from its schema: name, type, default, sweepable, meaning.
-fn describe_kind(k: &dyn repro::pipeline::kind::DynKind) -> String {
+fn describe_kind(k: &dyn repro::pipeline::kind::DynKind, registry: &repro::pipeline::kind::Registry) -> String {
     use serde_json::Value;
     let schema = k.params_schema();
     let defs = schema.get("$defs").cloned().unwrap_or(Value::Null);
@@ -327,7 +327,10 @@ fn describe_kind(k: &dyn repro::pipeline::kind::DynKind) -> String {
         out.push_str("no parameters\n");
         return out;
     };
-    out.push_str(&format!("{:<18} {:<22} {:<14} {:<9} meaning\n", "parameter", "type", "default", "sweep"));
+    out.push_str(&format!(
+        "{:<18} {:<22} {:<14} {:<14} {:<9} meaning\n",
+        "parameter", "type", "default", "valid range", "sweep"
+    ));
     for (name, v) in props {
         let doc = v
             .get("description")
@@ -347,7 +350,16 @@ fn describe_kind(k: &dyn repro::pipeline::kind::DynKind) -> String {
         };
         let sweep = if k.sweepable().contains(&name.as_str()) { "sweepable" } else { "" };
         let doc = doc.split_whitespace().collect::<Vec<_>>().join(" ");
-        out.push_str(&format!("{name:<18} {:<22} {default:<14} {sweep:<9} {doc}\n", type_of(v)));
+        let range = repro::pipeline::kind::range_text(&schema, v);
+        out.push_str(&format!("{name:<18} {:<22} {default:<14} {range:<14} {sweep:<9} {doc}\n", type_of(v)));
+    }
+    if !k.columns().is_empty() {
+        out.push_str(&format!("\n{:<24} {:<26} meaning\n", "output column", "unit"));
+        for c in k.columns() {
+            let (unit, meaning) =
+                registry.column(c).map_or(("", "(see docs/outputs.md)"), |d| (d.unit.as_str(), d.meaning.as_str()));
+            out.push_str(&format!("{c:<24} {unit:<26} {meaning}\n"));
+        }
     }
     out
 }
@@ -563,8 +575,15 @@ fn main() -> ExitCode {
                 let name = path.file_stem().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
                 let set =
                     if r.overrides.is_empty() { String::new() } else { format!(" -S {}", r.overrides.join(" -S ")) };
+                let commit = r.git_commit.as_deref().map_or(String::new(), |c| {
+                    format!(
+                        "  at {}{}",
+                        &c[..c.len().min(12)],
+                        if c.ends_with("(modified)") { " (modified)" } else { "" }
+                    )
+                });
                 println!(
-                    "{name}  {}  {}{set}  {} computed, {} cached, {} failed, {:.1} s",
+                    "{name}  {}  {}{set}{commit}  {} computed, {} cached, {} failed, {:.1} s",
                     repro::pipeline::report::utc_time(r.started_unix_ms),
                     r.pipeline,
                     r.count(repro::pipeline::report::Status::Computed),
@@ -715,7 +734,7 @@ fn main() -> ExitCode {
                     UsageError(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))).into()
                 );
             };
-            print!("{}", describe_kind(k));
+            print!("{}", describe_kind(k, &registry));
             Ok(ExitCode::SUCCESS)
         }
     })();

@@ -148,11 +148,6 @@ fn ancestors(p: &Pipeline, name: &str) -> BTreeSet<String> {
     seen
 }
 
-fn git(args: &[&str], dir: &Path) -> Option<String> {
-    let out = std::process::Command::new("git").args(args).current_dir(dir).output().ok()?;
-    out.status.success().then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
-}
-
 const STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}td,th{border:1px solid #ddd;padding:.2em .5em;vertical-align:top}\
@@ -232,8 +227,10 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     };
     let pipeline_bytes = std::fs::read(&src.pipeline_file)?;
     let dir = src.pipeline_file.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let commit = git(&["rev-parse", "HEAD"], dir);
-    let dirty = git(&["status", "--porcelain", "--untracked-files=no"], dir).is_some_and(|s| !s.is_empty());
+    let (commit, dirty) = match crate::pipeline::report::git_commit(dir) {
+        Some((c, modified)) => (Some(c), modified),
+        None => (None, false),
+    };
 
     let mut h = String::new();
     h.push_str("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n");

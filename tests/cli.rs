@@ -123,6 +123,13 @@ fn kinds_describes_a_kind_s_parameters() {
     let lambda = text.lines().find(|l| l.starts_with("lambda ")).unwrap_or_else(|| panic!("{text}"));
     assert!(lambda.contains("number") && lambda.contains("(required)") && lambda.contains("sweepable"), "{lambda}");
     assert!(lambda.contains("Maugis-Tabor parameter"), "{lambda}");
+    // Bounds and output columns, from the same declarations as the schema and the checks.
+    let k = text.lines().find(|l| l.starts_with("k ")).unwrap_or_else(|| panic!("{text}"));
+    assert!(k.contains("(0, 1)"), "{k}");
+    let n = text.lines().find(|l| l.starts_with("n ")).unwrap_or_else(|| panic!("{text}"));
+    assert!(n.contains("16..=32000"), "{n}");
+    let mu = text.lines().find(|l| l.starts_with("mu_star ")).unwrap_or_else(|| panic!("{text}"));
+    assert!(mu.contains("R/a0") || mu.contains("friction"), "{mu}");
     let out = s.repro(&["kinds", "theory.lennard_jones"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.lines().any(|l| l.starts_with("z_min") && l.contains("0.85")), "{text}");
@@ -145,7 +152,7 @@ fn sizes_and_tolerances_that_would_abort_or_hang_are_refused() {
         (&["theory.persson", "inv_k=2", "V0=1e300"][..], "parameter `V0`: must lie in (0, 1e100], got 1e300"),
         (
             &["theory.persson", "inv_k=2", "V0=1", "rel_tol=1e-16"][..],
-            "parameter `rel_tol`: the tolerance must lie in [1e-14, 0.01)",
+            "parameter `rel_tol`: must lie in [1e-14, 0.01), got 1e-16",
         ),
     ] {
         let mut a = vec!["point"];

@@ -273,3 +273,28 @@ fn every_output_column_is_documented_with_its_unit() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
+
+#[test]
+fn every_column_a_kind_emits_is_among_those_it_declares() {
+    // `repro kinds KIND` lists a kind's declared columns (Kind::COLUMNS) with their units.
+    let registry = repro::stages::registry();
+    let mut problems = Vec::new();
+    for (name, _, out) in reference_runs() {
+        let Some(out) = out else { continue };
+        let declared = registry.get(&name).unwrap().columns();
+        for column in out.table.column_names() {
+            // A fit's group column is named after the fitted table's column (here `g`).
+            if !(declared.contains(&column.as_str()) || (name == "fit.powerlaw" && column == "g")) {
+                problems.push(format!("{name}: emits `{column}`, which its COLUMNS do not list"));
+            }
+        }
+        if !name.starts_with("util.") {
+            for column in declared {
+                if registry.column(column).is_none() {
+                    problems.push(format!("{name}: declares `{column}`, which docs/outputs.md does not document"));
+                }
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}

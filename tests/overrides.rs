@@ -100,3 +100,35 @@ fn diff_names_the_parameter_set_and_the_results_it_moved() {
     let text = String::from_utf8_lossy(&s.repro(&["diff"]).stdout).to_string();
     assert!(text.contains("computed: 0 task(s)") && text.contains("no table value or figure changed"), "{text}");
 }
+
+#[test]
+fn a_run_records_the_git_commit_of_its_pipeline() {
+    // A pipeline in a git checkout: the run report (and `repro runs`) carries the commit, and
+    // says when tracked files differ from it; outside a checkout there is none.
+    let s = Scratch::new("git-commit");
+    let git = |args: &[&str]| {
+        let out = std::process::Command::new("git")
+            .args(["-c", "user.name=t", "-c", "user.email=t@t", "-c", "commit.gpgsign=false"])
+            .args(args)
+            .current_dir(s.path(""))
+            .output()
+            .expect("git runs");
+        assert!(out.status.success(), "git {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).trim().to_string()
+    };
+    s.write("p.yaml", &sleep_pipeline("[1]", 0, "x"));
+    let (code, err, report) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(report.0.get("git_commit").is_none(), "{:?}", report.0);
+    git(&["init", "-q"]);
+    git(&["add", "p.yaml"]);
+    git(&["commit", "-q", "-m", "pipeline"]);
+    let head = git(&["rev-parse", "HEAD"]);
+    let (_, _, report) = s.run("p.yaml", &[]);
+    assert_eq!(report.0["git_commit"], head.as_str());
+    let runs = String::from_utf8_lossy(&s.repro(&["runs"]).stdout).to_string();
+    assert!(runs.contains(&format!("at {}", &head[..12])), "{runs}");
+    s.write("p.yaml", &sleep_pipeline("[2]", 0, "x"));
+    let (_, _, report) = s.run("p.yaml", &[]);
+    assert_eq!(report.0["git_commit"], format!("{head} (modified)").as_str());
+}

@@ -71,7 +71,7 @@ fn modulus_ratio_outside_zero_one_is_refused_at_the_sweep_point() {
         "stages:\n  - name: pb\n    kind: theory.persson_brener\n    params:\n      k: [0.1, 1.5]\n      V_PB: 1\n",
     );
     assert!(err.contains("p.yaml:5:16: error:"), "{err}");
-    assert!(err.contains("k = E0/E_inf must lie in (0, 1), got 1.5"), "{err}");
+    assert!(err.contains("parameter `k`: must lie in (0, 1), got 1.5"), "{err}");
     assert!(err.contains("at sweep point k=1.5"), "{err}");
 }
 

@@ -21,9 +21,18 @@ fn committed_schema_is_current() {
 fn schema_covers_every_kind_and_wraps_exactly_the_sweepable_parameters() {
     let schema = generated();
     let registry = repro::stages::registry();
-    let variants = schema["properties"]["stages"]["items"]["oneOf"].as_array().unwrap();
-    let kinds: Vec<&str> = variants.iter().map(|v| v["properties"]["kind"]["const"].as_str().unwrap()).collect();
+    // One branch per kind, selected by `kind` (if/then): an editor reports a stage's errors
+    // against its own kind only.
+    let stage = &schema["properties"]["stages"]["items"];
+    let kinds: Vec<&str> =
+        stage["properties"]["kind"]["oneOf"].as_array().unwrap().iter().map(|v| v["const"].as_str().unwrap()).collect();
     assert_eq!(kinds, registry.names().collect::<Vec<_>>());
+    let branches = stage["allOf"].as_array().unwrap();
+    for (kind, branch) in kinds.iter().zip(branches) {
+        assert_eq!(branch["if"]["properties"]["kind"]["const"], *kind);
+        assert_eq!(branch["then"]["properties"]["params"]["$ref"], format!("#/$defs/params.{kind}"));
+    }
+    assert_eq!(branches.len(), kinds.len());
     for kind in registry.iter() {
         let props = &schema["$defs"][format!("params.{}", kind.name())]["properties"];
         for (name, p) in props.as_object().unwrap() {
@@ -47,4 +56,16 @@ fn default_pipeline_uses_only_what_the_schema_declares() {
             assert!(props.get(key).is_some(), "{kind}: `{key}` not in the schema");
         }
     }
+}
+
+#[test]
+fn bounds_declared_on_the_parameters_reach_the_schema() {
+    // The bounds the checks enforce (pipeline::kind::bound_errors) are the schema's own.
+    let schema = generated();
+    let k = &schema["$defs"]["params.bem.sweep"]["properties"]["k"]["anyOf"][0];
+    assert_eq!((k["exclusiveMinimum"].as_f64(), k["exclusiveMaximum"].as_f64()), (Some(0.0), Some(1.0)));
+    let nu = &schema["$defs"]["fem.gamma_c.MapModel"]["properties"]["nu"];
+    assert_eq!((nu["exclusiveMinimum"].as_f64(), nu["exclusiveMaximum"].as_f64()), (Some(-1.0), Some(0.5)));
+    let n = &schema["$defs"]["params.theory.maugis_dugdale"]["properties"]["n"];
+    assert_eq!((n["minimum"].as_u64(), n["maximum"].as_u64()), (Some(2), Some(1_000_000)));
 }

@@ -632,11 +632,19 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     }
     let _ = multi.clear();
 
+    let pipeline_dir = Path::new(&p.file).parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let mut report = RunReport {
         started_unix_ms,
         pipeline: p.file.clone(),
         overrides: p.overrides.clone(),
         dry_run: opts.dry_run,
+        git_commit: crate::pipeline::report::git_commit(pipeline_dir).map(|(c, modified)| {
+            if modified {
+                format!("{c} (modified)")
+            } else {
+                c
+            }
+        }),
         tasks: records,
         ..Default::default()
     };

@@ -88,6 +88,9 @@ pub trait Kind: Send + Sync + 'static {
     const DOC: &'static str;
     /// Parameters that may be given as a sweep (list, logspace, linspace).
     const SWEEPABLE: &'static [&'static str] = &[];
+    /// The columns of this kind's table, in order (some only for some parameters, e.g. a
+    /// material's), for `repro kinds KIND`; a test checks that every emitted column is here.
+    const COLUMNS: &'static [&'static str] = &[];
     type Params: DeserializeOwned + Serialize + JsonSchema + Send + Sync;
 
     /// Physical and logical validity of one point's parameters.
@@ -114,6 +117,7 @@ pub trait DynKind: Send + Sync {
     fn version(&self) -> u32;
     fn doc(&self) -> &'static str;
     fn sweepable(&self) -> &'static [&'static str];
+    fn columns(&self) -> &'static [&'static str];
     fn params_schema(&self) -> Value;
     /// Parses and validates one point; returns its canonical parameters (defaults filled in)
     /// and the stages it references.
@@ -124,7 +128,130 @@ pub trait DynKind: Send + Sync {
     fn shown_ranges(&self, params: &Value) -> Vec<ShownRange>;
 }
 
-struct Typed<K: Kind>(std::marker::PhantomData<K>);
+/// A kind with the JSON Schema of its parameters, whose numeric bounds (`minimum`,
+/// `exclusiveMinimum`, `maximum`, `exclusiveMaximum`, declared once on the parameter types)
+/// every point is checked against.
+struct Typed<K: Kind> {
+    schema: Value,
+    kind: std::marker::PhantomData<K>,
+}
+
+/// The errors of `value` (at `path`) against the numeric bounds of `schema` and of the
+/// schemas of its fields and items; `root` resolves `$ref`s.
+pub fn bound_errors(root: &Value, schema: &Value, value: &Value, path: &str, errors: &mut Vec<FieldError>) {
+    if let Some(target) = schema.get("$ref").and_then(Value::as_str) {
+        if let Some(def) = target.strip_prefix("#/$defs/").and_then(|name| root.get("$defs")?.get(name)) {
+            bound_errors(root, def, value, path, errors);
+        }
+    }
+    for key in ["anyOf", "oneOf", "allOf"] {
+        for branch in schema.get(key).and_then(Value::as_array).into_iter().flatten() {
+            bound_errors(root, branch, value, path, errors);
+        }
+    }
+    let join = |field: &str| if path.is_empty() { field.to_string() } else { format!("{path}.{field}") };
+    match value {
+        Value::Number(n) => {
+            if let Some(message) = n.as_f64().and_then(|x| out_of_bounds(schema, x, n.is_f64())) {
+                errors.push(FieldError::new(path, message));
+            }
+        }
+        Value::Object(fields) => {
+            if let Some(props) = schema.get("properties") {
+                for (name, v) in fields {
+                    if let Some(s) = props.get(name) {
+                        bound_errors(root, s, v, &join(name), errors);
+                    }
+                }
+            }
+        }
+        Value::Array(items) => {
+            let prefix = schema.get("prefixItems").and_then(Value::as_array);
+            for (i, v) in items.iter().enumerate() {
+                let s = prefix.and_then(|p| p.get(i)).or_else(|| schema.get("items"));
+                if let Some(s) = s {
+                    bound_errors(root, s, v, &format!("{path}[{i}]"), errors);
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+/// A bound or a value as errors and `repro kinds` show it: 0.5, 32000, 1e100, 1e-14.
+fn show(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else if x != 0.0 && (x.abs() >= 1e15 || x.abs() < 1e-4) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// The bounds of a numeric schema: (lower, exclusive), (upper, exclusive).
+type Bounds = ((Option<f64>, bool), (Option<f64>, bool));
+
+fn bounds_of(schema: &Value) -> Bounds {
+    let get = |k: &str| schema.get(k).and_then(Value::as_f64);
+    let lo = match (get("minimum"), get("exclusiveMinimum")) {
+        (_, Some(b)) => (Some(b), true),
+        (b, None) => (b, false),
+    };
+    let hi = match (get("maximum"), get("exclusiveMaximum")) {
+        (_, Some(b)) => (Some(b), true),
+        (b, None) => (b, false),
+    };
+    (lo, hi)
+}
+
+/// The valid range of a numeric schema as `repro kinds` shows it: "> 0", ">= 0",
+/// "(0, 1)", "16..=32000"; empty without bounds. `$ref`s and the branches of an optional
+/// field are followed (`root` resolves them).
+pub fn range_text(root: &Value, schema: &Value) -> String {
+    if let Some(def) =
+        schema.get("$ref").and_then(Value::as_str).and_then(|t| root.get("$defs")?.get(t.strip_prefix("#/$defs/")?))
+    {
+        return range_text(root, def);
+    }
+    let ((lo, lo_open), (hi, hi_open)) = bounds_of(schema);
+    let integer = schema
+        .get("type")
+        .is_some_and(|t| t == "integer" || t.as_array().is_some_and(|a| a.iter().any(|x| x == "integer")));
+    match (lo, hi) {
+        (Some(a), None) => format!("{} {}", if lo_open { ">" } else { ">=" }, show(a)),
+        (None, Some(b)) => format!("{} {}", if hi_open { "<" } else { "<=" }, show(b)),
+        (Some(a), Some(b)) if integer && !lo_open && !hi_open => format!("{}..={}", show(a), show(b)),
+        (Some(a), Some(b)) => {
+            format!("{}{}, {}{}", if lo_open { "(" } else { "[" }, show(a), show(b), if hi_open { ")" } else { "]" })
+        }
+        (None, None) => String::new(),
+    }
+}
+
+/// What is wrong with `x` against the bounds of `schema`, if anything, in the words of the
+/// errors: "must be positive", "must lie in 4..=20000", "must lie in (-1, 0.5)".
+fn out_of_bounds(schema: &Value, x: f64, real: bool) -> Option<String> {
+    let ((lo, lo_open), (hi, hi_open)) = bounds_of(schema);
+    let above = lo.is_none_or(|b| if lo_open { x > b } else { x >= b });
+    let below = hi.is_none_or(|b| if hi_open { x < b } else { x <= b });
+    if above && below {
+        return None;
+    }
+    let wanted = match (lo, hi) {
+        (Some(0.0), None) if lo_open => "must be positive".to_string(),
+        (Some(0.0), None) => "must be zero or positive".to_string(),
+        (Some(a), None) => format!("must be {} {}", if lo_open { "greater than" } else { "at least" }, show(a)),
+        (None, Some(b)) => format!("must be {} {}", if hi_open { "less than" } else { "at most" }, show(b)),
+        (Some(a), Some(b)) if !real && !lo_open && !hi_open => format!("must lie in {}..={}", show(a), show(b)),
+        (Some(a), Some(b)) => {
+            let (open, close) = (if lo_open { "(" } else { "[" }, if hi_open { ")" } else { "]" });
+            format!("must lie in {open}{}, {}{close}", show(a), show(b))
+        }
+        (None, None) => return None,
+    };
+    Some(format!("{wanted}, got {}", show(x)))
+}
 
 fn parse<K: Kind>(params: &Value) -> Result<K::Params, FieldError> {
     serde_path_to_error::deserialize::<_, K::Params>(params).map_err(|e| {
@@ -147,16 +274,23 @@ impl<K: Kind> DynKind for Typed<K> {
     fn sweepable(&self) -> &'static [&'static str] {
         K::SWEEPABLE
     }
+    fn columns(&self) -> &'static [&'static str] {
+        K::COLUMNS
+    }
     fn params_schema(&self) -> Value {
-        serde_json::to_value(schemars::schema_for!(K::Params)).expect("schema serialises")
+        self.schema.clone()
     }
     fn check(&self, params: &Value) -> Result<Checked, Vec<FieldError>> {
         let p = parse::<K>(params).map_err(|e| vec![e])?;
-        let errors = K::validate(&p);
+        let canonical = serde_json::to_value(&p).expect("params serialise");
+        let mut errors = Vec::new();
+        bound_errors(&self.schema, &self.schema, &canonical, "", &mut errors);
+        // Every error at once; a field out of its declared bounds is reported once.
+        let out_of_bounds: Vec<String> = errors.iter().map(|e| e.path.clone()).collect();
+        errors.extend(K::validate(&p).into_iter().filter(|e| !out_of_bounds.contains(&e.path)));
         if !errors.is_empty() {
             return Err(errors);
         }
-        let canonical = serde_json::to_value(&p).expect("params serialise");
         Ok((canonical, K::referenced_stages(&p)))
     }
     fn run(&self, params: &Value, inputs: &Inputs) -> Result<Output> {
@@ -189,7 +323,8 @@ impl Registry {
     }
 
     pub fn add<K: Kind>(&mut self) -> &mut Self {
-        let prev = self.kinds.insert(K::NAME, Box::new(Typed::<K>(std::marker::PhantomData)));
+        let schema = serde_json::to_value(schemars::schema_for!(K::Params)).expect("schema serialises");
+        let prev = self.kinds.insert(K::NAME, Box::new(Typed::<K> { schema, kind: std::marker::PhantomData }));
         assert!(prev.is_none(), "stage kind {} registered twice", K::NAME);
         self
     }

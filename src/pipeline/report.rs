@@ -76,6 +76,10 @@ pub struct RunReport {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub overrides: Vec<String>,
     pub dry_run: bool,
+    /// The git commit of the pipeline file's checkout, when it is one; " (modified)" when
+    /// tracked files differ from it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub git_commit: Option<String>,
     pub wall_time_s: f64,
     pub counts: BTreeMap<String, usize>,
     pub tasks: Vec<TaskRecord>,
@@ -195,6 +199,18 @@ pub fn utc_time(unix_ms: u64) -> String {
     let month = if mp < 10 { mp + 3 } else { mp - 9 };
     let year = yoe + era * 400 + i64::from(month <= 2);
     format!("{year:04}-{month:02}-{day:02} {:02}:{:02}:{:02} UTC", rem / 3600, rem % 3600 / 60, rem % 60)
+}
+
+/// The commit of the git checkout holding `dir`, and whether tracked files differ from it;
+/// None outside a checkout (or without git).
+pub fn git_commit(dir: &std::path::Path) -> Option<(String, bool)> {
+    let git = |args: &[&str]| -> Option<String> {
+        let out = std::process::Command::new("git").args(args).current_dir(dir).output().ok()?;
+        out.status.success().then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
+    };
+    let commit = git(&["rev-parse", "HEAD"])?;
+    let modified = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+    Some((commit, modified))
 }
 
 #[cfg(test)]

@@ -63,7 +63,8 @@ fn sweep_of(item: Value) -> Value {
 /// The schema of a pipeline file for the kinds in `registry`.
 pub fn pipeline_schema(registry: &Registry) -> Value {
     let mut defs = Map::new();
-    let mut variants = Vec::new();
+    let mut branches = Vec::new();
+    let mut kinds = Vec::new();
     for kind in registry.iter() {
         let mut schema = kind.params_schema();
         let prefix = kind.name();
@@ -85,20 +86,28 @@ pub fn pipeline_schema(registry: &Registry) -> Value {
             m.insert("description".into(), json!(format!("{} (code version {})", kind.doc(), kind.version())));
         }
         defs.insert(format!("params.{prefix}"), schema);
-        variants.push(json!({
-            "type": "object",
-            "properties": {
-                "name": {"type": "string", "pattern": "^[A-Za-z0-9_.-]+$"},
-                "kind": {"const": prefix},
-                "description": {"type": "string"},
-                "params": {"$ref": format!("#/$defs/params.{prefix}")},
-                "needs": {"type": "array", "items": {"type": "string"}},
-                "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"}
-            },
-            "required": ["name", "kind"],
-            "additionalProperties": false
+        // One branch per kind, selected by `kind`: an editor reports the errors of the
+        // stage's own kind only.
+        branches.push(json!({
+            "if": {"properties": {"kind": {"const": prefix}}, "required": ["kind"]},
+            "then": {"properties": {"params": {"$ref": format!("#/$defs/params.{prefix}")}}}
         }));
+        kinds.push(json!({"const": prefix, "description": kind.doc()}));
     }
+    let stage = json!({
+        "type": "object",
+        "properties": {
+            "name": {"type": "string", "pattern": "^[A-Za-z0-9_.-]+$"},
+            "kind": {"oneOf": kinds, "description": "the stage kind (`repro kinds` lists them)"},
+            "description": {"type": "string"},
+            "params": {"type": "object"},
+            "needs": {"type": "array", "items": {"type": "string"}},
+            "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"}
+        },
+        "required": ["name", "kind"],
+        "additionalProperties": false,
+        "allOf": branches
+    });
     json!({
         "$schema": "https://json-schema.org/draft/2020-12/schema",
         "title": "repro pipeline",
@@ -106,7 +115,7 @@ pub fn pipeline_schema(registry: &Registry) -> Value {
         "type": "object",
         "properties": {
             "description": {"type": "string"},
-            "stages": {"type": "array", "items": {"oneOf": variants}}
+            "stages": {"type": "array", "items": stage}
         },
         "required": ["stages"],
         "additionalProperties": false,

@@ -310,7 +310,8 @@ fn apply_overrides(file: &str, root: &mut Node, overrides: &[Override]) -> Vec<D
         message,
     };
     for o in overrides {
-        let value = match marked_yaml::parse_yaml(0, format!("v: {}", o.value)) {
+        let options = marked_yaml::LoaderOptions::default().prevent_coercion(true);
+        let value = match marked_yaml::parse_yaml_with_options(0, format!("v: {}", o.value), options) {
             Ok(Node::Mapping(m)) => m.get_node("v").cloned(),
             _ => None,
         };
@@ -361,7 +362,8 @@ pub fn parse_with(
             message: "a pipeline file holds one YAML document; a second one starts here".to_string(),
         }]));
     }
-    let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true);
+    // A quoted scalar stays text (`A_max: "5.0"` is a string, as for the JSON Schema).
+    let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true).prevent_coercion(true);
     let mut root = marked_yaml::parse_yaml_with_options(0, text, options)
         .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
     let errors = apply_overrides(file, &mut root, overrides);

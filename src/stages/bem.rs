@@ -1,8 +1,8 @@
 //! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
 //! (`bem.sweep`) and the fields of one point (`bem.profile`).
 
+use super::finite;
 use super::material::with_material_fields;
-use super::{check, finite};
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -16,6 +16,7 @@ with_material_fields! {
 #[allow(non_snake_case)]
 pub struct BemParams {
     /// Maugis-Tabor parameter lambda (Eq. 4.9), > 0 (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub lambda: f64,
     /// Dimensionless load W (Eq. 4.6), nonzero (sweepable). Negative: a tensile load (the
     /// cylinder beneath the substrate, Chapter 5), reached on the stable branch by walking
@@ -23,29 +24,36 @@ pub struct BemParams {
     /// reported as not converged.
     pub W: f64,
     /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub k: f64,
     /// Dimensionless speed V0 = v tau / a0 (Eq. 4.18; a0 the Hertz half-width of |W|), >= 0
     /// (sweepable).
+    #[schemars(range(min = 0))]
     pub V0: f64,
     /// A fixed number of elements (the error is then estimated against n/2); default: the
     /// mesh is chosen from `rel_tol`.
     #[serde(default)]
+    #[schemars(range(min = 16, max = 32_000))]
     pub n: Option<usize>,
     /// Half-length of the domain in units of beta; default: chosen from lambda, W and rel_tol
     /// (`bem::solver::domain_half_length`).
     #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub half_length: Option<f64>,
     /// Requested relative accuracy of mu* (default 1e-3): starting from
     /// `bem::solver::starting_mesh`, the number of elements is doubled until the Richardson
     /// error estimate meets it, up to `n_max`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub rel_tol: Option<f64>,
     /// The largest mesh of the refinement (default 16000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 16, max = 32_000))]
     pub n_max: Option<usize>,
     /// Newton's tolerance on the max-norm residual in units of H (default 1e-9,
     /// `bem::solver::TOLERANCE`); for the accuracy-cost bench.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub newton_tol: Option<f64>,
 }
 }
@@ -85,19 +93,9 @@ impl BemParams {
 
     fn validate(&self) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::positive(&mut e, "lambda", self.lambda);
         if !(self.W != 0.0 && self.W.is_finite()) {
             e.push(FieldError::new("W", format!("must be nonzero and finite, got {}", self.W)));
         }
-        check::in_open(&mut e, "k", self.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
-        check::non_negative(&mut e, "V0", self.V0);
-        check::elements(&mut e, "n", self.n);
-        check::elements(&mut e, "n_max", self.n_max);
-        if let Some(l) = self.half_length {
-            check::positive(&mut e, "half_length", l);
-        }
-        check::rel_tol(&mut e, "rel_tol", self.rel_tol);
-        check::rel_tol(&mut e, "newton_tol", self.newton_tol);
         self.material().validate(&mut e);
         e
     }
@@ -136,6 +134,31 @@ impl Kind for BemSweep {
     const VERSION: u32 = 13;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
+    const COLUMNS: &'static [&'static str] = &[
+        "lambda",
+        "W",
+        "k",
+        "V0",
+        "s",
+        "material",
+        "mu_star",
+        "mu_adh",
+        "mu_comp",
+        "F_T",
+        "x_lead",
+        "x_trail",
+        "approach",
+        "p_max_bar",
+        "p_min_bar",
+        "converged",
+        "iterations",
+        "residual",
+        "error_estimate",
+        "n",
+        "half_length",
+        "zone_elements",
+        "wall_time_s",
+    ];
     type Params = BemParams;
 
     fn validate(p: &BemParams) -> Vec<FieldError> {
@@ -186,6 +209,27 @@ impl Kind for BemProfile {
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
+    const COLUMNS: &'static [&'static str] = &[
+        "lambda",
+        "W",
+        "k",
+        "V0",
+        "s",
+        "material",
+        "X",
+        "P",
+        "U",
+        "H",
+        "P_dU_dX",
+        "mu_integrand",
+        "surface",
+        "indenter",
+        "mu_star",
+        "error_estimate",
+        "n",
+        "zone_elements",
+        "wall_time_s",
+    ];
     type Params = BemParams;
 
     fn validate(p: &BemParams) -> Vec<FieldError> {
@@ -238,28 +282,36 @@ fn default_log_tol() -> f64 {
 #[allow(non_snake_case)]
 pub struct MaximaParams {
     /// Maugis-Tabor parameter (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub lambda: f64,
     /// Dimensionless load (sweepable).
     pub W: f64,
     /// Modulus ratio k = E0/E_inf (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub k: f64,
     /// Speeds searched, [from, to].
     #[serde(default = "default_v0_range")]
     pub V0_range: [f64; 2],
     /// Log-spaced bracketing points over the range.
     #[serde(default = "default_grid")]
+    #[schemars(range(min = 3, max = 1000))]
     pub grid: usize,
     /// Golden-section tolerance in log10 V0.
     #[serde(default = "default_log_tol")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub log_tol: f64,
     /// Mesh rules of each solve, as in `bem.sweep`.
     #[serde(default)]
+    #[schemars(range(min = 16, max = 32_000))]
     pub n: Option<usize>,
     #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub half_length: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub rel_tol: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 16, max = 32_000))]
     pub n_max: Option<usize>,
 }
 
@@ -292,6 +344,19 @@ impl Kind for BemMaxima {
     const DOC: &'static str =
         "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
+    const COLUMNS: &'static [&'static str] = &[
+        "lambda",
+        "W",
+        "k",
+        "mu_star_max",
+        "V0_at_max",
+        "mu_adh",
+        "mu_comp",
+        "error_estimate",
+        "evaluations",
+        "converged",
+        "wall_time_s",
+    ];
     type Params = MaximaParams;
 
     fn validate(p: &MaximaParams) -> Vec<FieldError> {
@@ -300,8 +365,6 @@ impl Kind for BemMaxima {
         if !(a > 0.0 && b > a) {
             e.push(FieldError::new("V0_range", format!("needs 0 < from < to, got [{a}, {b}]")));
         }
-        check::size(&mut e, "grid", p.grid, 3, 1000);
-        check::in_open(&mut e, "log_tol", p.log_tol, 0.0, 1.0, "the tolerance");
         e
     }
 

@@ -9,7 +9,6 @@
 //! (`on_front_resolved`): no other configuration is as accurate and as fast within the
 //! resolutions and clearly better in one.
 
-use super::check;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use anyhow::{bail, Context, Result};
@@ -33,6 +32,7 @@ pub struct ParetoParams {
     /// The quantity whose relative error is measured (e.g. `mu_star`, `F_buckling_bar`).
     pub value: String,
     /// The declared tolerance on the relative error (e.g. 0.005).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub tolerance: f64,
     /// The candidate that the thesis pipeline uses (its defaults).
     pub default: String,
@@ -86,11 +86,23 @@ impl Kind for Pareto {
     const VERSION: u32 = 3;
     const DOC: &'static str =
         "Run time against error: per solver configuration, max relative error vs a reference, wall time, Pareto front";
+    const COLUMNS: &'static [&'static str] = &[
+        "config",
+        "rel_error",
+        "wall_time_s",
+        "points",
+        "converged",
+        "on_front",
+        "on_front_resolved",
+        "is_default",
+        "meets_tolerance",
+        "tolerance",
+        "value",
+    ];
     type Params = ParetoParams;
 
     fn validate(p: &ParetoParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::positive(&mut e, "tolerance", p.tolerance);
         for (name, r) in [("error_resolution", p.error_resolution), ("time_resolution", p.time_resolution)] {
             if !(0.0..1.0).contains(&r) {
                 e.push(FieldError::new(name, format!("must lie in [0, 1), got {r}")));
@@ -215,6 +227,8 @@ impl Kind for Summary {
     const NAME: &'static str = "bench.summary";
     const VERSION: u32 = 1;
     const DOC: &'static str = "Summary of a stress grid: per stage points, converged, max iterations, worst residual";
+    const COLUMNS: &'static [&'static str] =
+        &["stage", "points", "converged", "not_converged", "max_iterations", "worst_residual"];
     type Params = SummaryParams;
 
     fn validate(p: &SummaryParams) -> Vec<FieldError> {

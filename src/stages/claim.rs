@@ -299,6 +299,25 @@ impl Kind for Claim {
     const VERSION: u32 = 1;
     const DOC: &'static str =
         "A statement of the thesis checked against a published table: the quantity, the thesis' value, the verdict";
+    const COLUMNS: &'static [&'static str] = &[
+        "id",
+        "source",
+        "statement",
+        "stage",
+        "column",
+        "aggregate",
+        "value",
+        "thesis",
+        "thesis_value",
+        "has_independent",
+        "independent_value",
+        "independent_source",
+        "verdict",
+        "expected",
+        "regression",
+        "reason",
+        "docs",
+    ];
     type Params = ClaimParams;
 
     fn validate(p: &ClaimParams) -> Vec<FieldError> {
@@ -378,6 +397,7 @@ impl Kind for Claims {
     const NAME: &'static str = "claims";
     const VERSION: u32 = 1;
     const DOC: &'static str = "The verdicts of claim stages in one table, and the run's verdict line";
+    const COLUMNS: &'static [&'static str] = &["id", "verdict", "expected"];
     type Params = ClaimsParams;
 
     fn validate(p: &ClaimsParams) -> Vec<FieldError> {

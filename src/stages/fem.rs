@@ -36,25 +36,32 @@ fn default_grading() -> f64 {
 #[allow(non_snake_case)]
 pub struct ShellParams {
     /// Inner radius R (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub R: f64,
     /// Thickness h (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub h: f64,
     /// Young's modulus E (N/mm^2), default 1.3.
     #[serde(default = "default_e")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub E: f64,
     /// Poisson's ratio, default 0.45.
     #[serde(default = "default_nu")]
+    #[schemars(extend("exclusiveMinimum" = -1.0, "exclusiveMaximum" = 0.5))]
     pub nu: f64,
     /// Elements along the meridian (default: 1.5 (R + h) / g0, so that the elements at the
     /// contact rim resolve the Lennard-Jones range g0; `fem::mesh::meridian_elements`) and
     /// through the thickness (default 2: quadratic elements carry the bending exactly).
     #[serde(default)]
+    #[schemars(range(min = 4, max = check::MAX_SHELL_ELEMENTS))]
     pub n_meridian: Option<usize>,
     #[serde(default = "default_n_thickness")]
+    #[schemars(range(min = 1, max = 16))]
     pub n_thickness: usize,
     /// Ratio of the last to the first element size along the meridian (default 3: fine enough
     /// at the apex for the first contact, and at r ~ 0.6 R for the inverted state's ring).
     #[serde(default = "default_grading")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub grading: f64,
     /// Hyperelastic law: `neo_hookean` (default), `saint_venant_kirchhoff` or `hencky`.
     #[serde(default, skip_serializing_if = "MaterialLaw::is_default")]
@@ -66,18 +73,9 @@ pub struct ShellParams {
 
 impl ShellParams {
     fn validate(&self, e: &mut Vec<FieldError>) {
-        check::positive(e, "R", self.R);
-        check::positive(e, "h", self.h);
         if self.h >= 0.5 * self.R {
             e.push(FieldError::new("h", format!("a thin shell needs h < R/2, got h = {} and R = {}", self.h, self.R)));
         }
-        check::positive(e, "E", self.E);
-        check::in_open(e, "nu", self.nu, -1.0, 0.5, "Poisson's ratio");
-        if let Some(n) = self.n_meridian {
-            check::size(e, "n_meridian", n, 4, check::MAX_SHELL_ELEMENTS);
-        }
-        check::size(e, "n_thickness", self.n_thickness, 1, 16);
-        check::positive(e, "grading", self.grading);
         self.imperfection.validate(e, "");
     }
 
@@ -115,6 +113,7 @@ impl Kind for FemMesh {
     const VERSION: u32 = 2;
     const DOC: &'static str =
         "Chapter 3: the meridian mesh of a hemispherical shell (8-node elements), one row per node";
+    const COLUMNS: &'static [&'static str] = &["r", "z", "axis", "base", "outer"];
     type Params = ShellParams;
 
     fn validate(p: &ShellParams) -> Vec<FieldError> {
@@ -158,10 +157,13 @@ pub struct IndentParams {
     pub base: Support,
     /// Contact penalty in units of E/h: the penetration is about p h/(penalty E).
     #[serde(default = "default_penalty")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub penalty: f64,
     /// Largest plate displacement delta/R.
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub delta_max: f64,
     /// Equal load steps to delta_max (and back).
+    #[schemars(range(min = 1, max = check::MAX_STEPS))]
     pub steps: usize,
     /// Stability test: `lift_threshold` (default) or `tangent` (`shell_form::Stability`).
     #[serde(default, skip_serializing_if = "Stability::is_default")]
@@ -169,18 +171,22 @@ pub struct IndentParams {
     /// With `stability: lift_threshold`: contact nodes pressed above this fraction of the
     /// peak pressure are held against lifting off, the others are free to (default 0.02).
     #[serde(default = "default_lift_threshold")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub lift_threshold: f64,
     /// Bisections locating the snap-through in delta (default 6: to steps/64).
     #[serde(default = "default_bisections")]
     pub bisections: u32,
     /// Work of adhesion dgamma of the Lennard-Jones law, Eq. 3.3 (N/mm; default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub gamma: f64,
     /// Equilibrium distance g0 of the Lennard-Jones law (mm; default 0.1 as the thesis).
     #[serde(default = "default_g0")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub g0: f64,
     /// Coulomb friction coefficient (default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub mu: f64,
     /// What holds touching points of an adhesive contact in the stability test: `free`
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
@@ -211,13 +217,6 @@ impl IndentParams {
         let mut shell = Vec::new();
         self.shell.validate(&mut shell);
         e.extend(prefixed("shell", shell));
-        check::positive(e, "penalty", self.penalty);
-        check::in_open(e, "delta_max", self.delta_max, 0.0, 1.0, "delta/R");
-        check::size(e, "steps", self.steps, 1, check::MAX_STEPS);
-        check::in_open(e, "lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
-        check::non_negative(e, "gamma", self.gamma);
-        check::positive(e, "g0", self.g0);
-        check::non_negative(e, "mu", self.mu);
     }
 
     /// The model on `n` meridian elements and the plate.
@@ -385,6 +384,45 @@ impl Kind for FemIndent {
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
+    const COLUMNS: &'static [&'static str] = &[
+        "leg",
+        "leg_id",
+        "state",
+        "gamma",
+        "mu",
+        "delta_over_R",
+        "F_bar",
+        "F_error_bar",
+        "F_contact_bar",
+        "F_adhesive_bar",
+        "slip_fraction",
+        "p_max_over_E",
+        "p_apex_over_E",
+        "A_bar",
+        "contact_radius_over_R",
+        "max_penetration_over_h",
+        "stable",
+        "held",
+        "converged",
+        "iterations",
+        "residual",
+        "buckled",
+        "F_buckling_bar",
+        "F_buckling_error_bar",
+        "F_buckling_mesh_error_bar",
+        "delta_buckling_over_R",
+        "delta_landing_over_R",
+        "delta_snap_back_over_R",
+        "W_bar",
+        "W_error_bar",
+        "W_mesh_error_bar",
+        "W_friction_bar",
+        "n_meridian",
+        "mesh_error_source",
+        "mesh_study_agrees",
+        "complete",
+        "wall_time_s",
+    ];
     type Params = IndentParams;
 
     fn validate(p: &IndentParams) -> Vec<FieldError> {
@@ -530,6 +568,21 @@ impl Kind for FemProfile {
     const VERSION: u32 = 17;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
+    const COLUMNS: &'static [&'static str] = &[
+        "label",
+        "point",
+        "surface_id",
+        "delta_over_R",
+        "r_over_R",
+        "z_over_R",
+        "p_over_E",
+        "contact",
+        "inverted",
+        "F_bar",
+        "F_contact_bar",
+        "F_error_bar",
+        "wall_time_s",
+    ];
     type Params = ProfileParams;
 
     fn validate(p: &ProfileParams) -> Vec<FieldError> {

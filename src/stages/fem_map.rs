@@ -80,23 +80,34 @@ impl From<Hold> for AdhesiveHold {
 #[allow(non_snake_case)]
 pub struct MapModel {
     /// Inner radius R (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub R: f64,
     /// Young's modulus (N/mm^2) and Poisson's ratio.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub E: f64,
+    #[schemars(extend("exclusiveMinimum" = -1.0, "exclusiveMaximum" = 0.5))]
     pub nu: f64,
     /// Equilibrium distance g0 of the Lennard-Jones law (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub g0: f64,
     /// Mesh: elements along the meridian (default 1.5 (R + h) / g0,
     /// `fem::mesh::meridian_elements`) and through the thickness (default 2), grading.
+    #[schemars(range(min = 4, max = check::MAX_SHELL_ELEMENTS))]
     pub n_meridian: Option<usize>,
+    #[schemars(range(min = 1, max = 16))]
     pub n_thickness: usize,
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub grading: f64,
     /// Contact penalty in units of E/h.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub penalty: f64,
     /// Largest plate displacement delta/R, and equal load steps to it.
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub delta_max: f64,
+    #[schemars(range(min = 1, max = check::MAX_STEPS))]
     pub steps: usize,
     /// Stability test: pressure fraction above which contact nodes are held.
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub lift_threshold: f64,
     /// Bisections locating a snap in delta.
     pub bisections: u32,
@@ -142,19 +153,6 @@ impl Default for MapModel {
 
 impl MapModel {
     fn validate(&self, e: &mut Vec<FieldError>) {
-        for (name, v) in [("model.R", self.R), ("model.E", self.E), ("model.g0", self.g0)] {
-            check::positive(e, name, v);
-        }
-        check::positive(e, "model.penalty", self.penalty);
-        check::positive(e, "model.grading", self.grading);
-        check::in_open(e, "model.nu", self.nu, -1.0, 0.5, "Poisson's ratio");
-        if let Some(n) = self.n_meridian {
-            check::size(e, "model.n_meridian", n, 4, check::MAX_SHELL_ELEMENTS);
-        }
-        check::size(e, "model.n_thickness", self.n_thickness, 1, 16);
-        check::size(e, "model.steps", self.steps, 1, check::MAX_STEPS);
-        check::in_open(e, "model.delta_max", self.delta_max, 0.0, 1.0, "delta/R");
-        check::in_open(e, "model.lift_threshold", self.lift_threshold, 0.0, 1.0, "a fraction of the peak pressure");
         self.imperfection.validate(e, "model.");
     }
 
@@ -210,10 +208,6 @@ impl MapModel {
     }
 }
 
-fn check_h_over_r(e: &mut Vec<FieldError>, name: &str, x: f64) {
-    check::in_open(e, name, x, 0.0, 0.5, "h/R of a thin shell");
-}
-
 fn default_true() -> bool {
     true
 }
@@ -222,12 +216,15 @@ fn default_true() -> bool {
 #[serde(deny_unknown_fields)]
 pub struct BucklingParams {
     /// Thickness over radius h/R (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.5))]
     pub h_over_R: f64,
     /// Work of adhesion gamma/(E h) (sweepable; default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub gamma_over_Eh: f64,
     /// Coulomb friction coefficient (sweepable; default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub mu: f64,
     /// Also unload, for the dissipated energy W (default true; false stops at the snap).
     #[serde(default = "default_true")]
@@ -329,13 +326,40 @@ impl Kind for FemBuckling {
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
+    const COLUMNS: &'static [&'static str] = &[
+        "h_over_R",
+        "gamma_over_Eh",
+        "mu",
+        "apex_force",
+        "dimple",
+        "buckled",
+        "F_buckling_bar",
+        "F_contact_buckling_bar",
+        "F_adhesive_buckling_bar",
+        "F_buckling_error_bar",
+        "F_buckling_mesh_error_bar",
+        "delta_buckling_over_R",
+        "delta_buckling_error_over_R",
+        "r_over_R",
+        "delta_landing_over_R",
+        "W_bar",
+        "W_Nmm",
+        "W_error_bar",
+        "W_error_Nmm",
+        "W_mesh_error_Nmm",
+        "W_friction_Nmm",
+        "n_meridian",
+        "mesh_error_source",
+        "mesh_study_agrees",
+        "complete",
+        "max_iterations",
+        "max_residual",
+        "wall_time_s",
+    ];
     type Params = BucklingParams;
 
     fn validate(p: &BucklingParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check_h_over_r(&mut e, "h_over_R", p.h_over_R);
-        check::non_negative(&mut e, "gamma_over_Eh", p.gamma_over_Eh);
-        check::non_negative(&mut e, "mu", p.mu);
         p.point_model().validate(&mut e);
         e
     }
@@ -439,20 +463,26 @@ fn default_rel_tol() -> f64 {
 #[serde(deny_unknown_fields)]
 pub struct GammaCParams {
     /// Thickness over radius h/R (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.5))]
     pub h_over_R: f64,
     /// Coulomb friction coefficient (sweepable; default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub mu: f64,
     /// First gamma/(E h) tried (default 2e-2), factor between trials until the answer
     /// changes (default 2), largest gamma/(E h) tried (default 0.1).
     #[serde(default = "default_guess")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub guess: f64,
     #[serde(default = "default_growth")]
+    #[schemars(extend("exclusiveMinimum" = 1.0))]
     pub growth: f64,
     #[serde(default = "default_gamma_max")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub gamma_max: f64,
     /// Bracketing tolerance: the search stops when gamma_hi / gamma_lo - 1 < rel_tol.
     #[serde(default = "default_rel_tol")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 10.0))]
     pub rel_tol: f64,
     #[serde(default)]
     pub model: MapModel,
@@ -467,18 +497,29 @@ impl Kind for FemGammaC {
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
+    const COLUMNS: &'static [&'static str] = &[
+        "h_over_R",
+        "mu",
+        "gamma_c_over_Eh",
+        "gamma_lo_over_Eh",
+        "gamma_hi_over_Eh",
+        "error_estimate",
+        "rel_tol",
+        "found",
+        "reliable",
+        "buckles_without_adhesion",
+        "gamma_c_N_per_mm",
+        "r_over_R",
+        "eq3_7_over_Eh",
+        "F_buckling_bar",
+        "probes",
+        "unconverged_probes",
+        "wall_time_s",
+    ];
     type Params = GammaCParams;
 
     fn validate(p: &GammaCParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check_h_over_r(&mut e, "h_over_R", p.h_over_R);
-        check::non_negative(&mut e, "mu", p.mu);
-        check::positive(&mut e, "guess", p.guess);
-        check::positive(&mut e, "gamma_max", p.gamma_max);
-        check::in_open(&mut e, "rel_tol", p.rel_tol, 0.0, 10.0, "a relative bracket width");
-        if !(p.growth > 1.0) {
-            e.push(FieldError::new("growth", format!("must exceed 1, got {}", p.growth)));
-        }
         p.model.validate(&mut e);
         e
     }
@@ -540,16 +581,21 @@ fn default_h_tol() -> f64 {
 pub struct LimitParams {
     /// Coulomb friction coefficient (sweepable; default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub mu: f64,
     /// Work of adhesion gamma/(E h) (default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub gamma_over_Eh: f64,
     /// The search interval of h/R (default [0.1, 0.4]) and its tolerance (default 0.005).
     #[serde(default = "default_h_lo")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.5))]
     pub h_lo: f64,
     #[serde(default = "default_h_hi")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.5))]
     pub h_hi: f64,
     #[serde(default = "default_h_tol")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub tol: f64,
     #[serde(default)]
     pub model: MapModel,
@@ -564,18 +610,26 @@ impl Kind for FemBucklingLimit {
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
+    const COLUMNS: &'static [&'static str] = &[
+        "mu",
+        "gamma_over_Eh",
+        "h_limit_over_R",
+        "h_lo_over_R",
+        "h_hi_over_R",
+        "error_estimate",
+        "found",
+        "buckles_at_h_lo",
+        "buckles_at_h_hi",
+        "probes",
+        "wall_time_s",
+    ];
     type Params = LimitParams;
 
     fn validate(p: &LimitParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::non_negative(&mut e, "mu", p.mu);
-        check::non_negative(&mut e, "gamma_over_Eh", p.gamma_over_Eh);
-        check_h_over_r(&mut e, "h_lo", p.h_lo);
-        check_h_over_r(&mut e, "h_hi", p.h_hi);
         if p.h_hi <= p.h_lo {
             e.push(FieldError::new("h_hi", format!("must exceed h_lo = {}, got {}", p.h_lo, p.h_hi)));
         }
-        check::positive(&mut e, "tol", p.tol);
         p.model.validate(&mut e);
         e
     }
@@ -641,6 +695,18 @@ impl Kind for FemGammaCMap {
     const VERSION: u32 = 4;
     const DOC: &'static str =
         "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
+    const COLUMNS: &'static [&'static str] = &[
+        "mu",
+        "h_over_R",
+        "gamma_c_over_Eh",
+        "gamma_lo_over_Eh",
+        "gamma_hi_over_Eh",
+        "error_estimate",
+        "h_error_over_R",
+        "eq3_7_over_Eh",
+        "found",
+        "reliable",
+    ];
     type Params = MapParams;
 
     fn referenced_stages(p: &MapParams) -> Vec<(String, String)> {

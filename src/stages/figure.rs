@@ -29,13 +29,14 @@ pub enum Style {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum LegendPosition {
-    #[default]
     UpperRight,
     UpperLeft,
     LowerRight,
     LowerLeft,
-    /// Where the legend box covers the fewest drawn points, lines and shaded areas: the
-    /// corners first, then the middles of the sides.
+    /// Where the legend box covers no drawn point, line or shaded area: the corners first,
+    /// then the middles of the sides; outside the axes, on the right, where every place
+    /// inside covers some (the default).
+    #[default]
     Auto,
 }
 
@@ -111,7 +112,8 @@ pub struct FitLayer {
     /// The fit stage (must be in `needs`).
     pub from: String,
     /// Legend label; `{slope}` and `{slope_std_error}` are replaced by the fitted values
-    /// (two decimals), other `{column}`s by the row's value. Omitted: no legend entry.
+    /// (the error to two significant digits, the slope to the same decimal), other
+    /// `{column}`s by the row's value. Omitted: no legend entry.
     #[serde(default)]
     pub label: String,
     /// Draw over this x range instead of the fitted one.
@@ -301,6 +303,17 @@ fn guide_series(g: &GuideLayer, log_x: bool) -> Series {
     }
 }
 
+/// A value and its standard error as a paper writes them: the error to two significant
+/// digits and the value to the same decimal place (0.6667 and 0.0012); without an error
+/// (zero or not finite), the value as tables show it and the error as "0".
+fn with_uncertainty(v: f64, e: f64) -> (String, String) {
+    if !(e > 0.0 && e.is_finite() && v.is_finite()) {
+        return (format_number(v), "0".into());
+    }
+    let decimals = (1 - e.log10().floor() as i32).clamp(0, 12) as usize;
+    (format!("{v:.decimals$}"), format!("{e:.decimals$}"))
+}
+
 fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Series>> {
     let t = inputs.table(&layer.from)?;
     let col = |name: &str| t.f64_column(name).with_context(|| format!("fit layer from `{}`", layer.from));
@@ -315,10 +328,8 @@ fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Result<Vec<Seri
     Ok((0..t.n_rows())
         .filter(|&row| keep(row))
         .map(|row| {
-            let mut label = layer
-                .label
-                .replace("{slope}", &format!("{:.2}", slope[row]))
-                .replace("{slope_std_error}", &format!("{:.2}", err[row]));
+            let (slope_text, err_text) = with_uncertainty(slope[row], err[row]);
+            let mut label = layer.label.replace("{slope}", &slope_text).replace("{slope_std_error}", &err_text);
             for (name, c) in &t.columns {
                 label = label.replace(&format!("{{{name}}}"), &c.display_at(row));
             }
@@ -416,7 +427,39 @@ fn extent(given: Option<[f64; 2]>, log: bool, values: impl Iterator<Item = f64>)
     Ok((lo, hi))
 }
 
+/// The SVG of a figure. An automatic legend that would cover a drawn mark wherever it goes
+/// inside the axes is drawn outside them, on the right.
 fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
+    let (svg, covered) = draw(p, series, false)?;
+    if covered == 0 || p.legend != LegendPosition::Auto {
+        return Ok(svg);
+    }
+    Ok(draw(p, series, true)?.0)
+}
+
+/// The title's lines: words wrapped so that each line fits in `width` pixels at `font`.
+fn title_lines(title: &str, font: &TextStyle, width: u32) -> Vec<String> {
+    let fits = |line: &str| {
+        let mut t = MultiLineText::<_, &str>::new((0, 0), font);
+        t.push_line(line);
+        t.estimate_dimension().map(|(w, _)| w as u32 <= width).unwrap_or(true)
+    };
+    let mut lines: Vec<String> = Vec::new();
+    for word in title.split(' ') {
+        match lines.last_mut() {
+            Some(line) if fits(&format!("{line} {word}")) => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// Draws the figure, the legend outside the axes if `legend_outside`; returns the SVG and
+/// how many drawn marks the legend covers.
+fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) -> Result<(String, usize)> {
     let tx = |x: f64| if p.log_x { x.log10() } else { x };
     let ty = |y: f64| if p.log_y { y.log10() } else { y };
     let xs = series.iter().flat_map(|s| s.points.iter().map(|q| tx(q.0)));
@@ -425,12 +468,19 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
     let ys = series.iter().flat_map(|s| s.points.iter().filter(|q| tx(q.0) >= x0 && tx(q.0) <= x1).map(|q| ty(q.1)));
     let (y0, y1) = extent(p.y_range, p.log_y, ys)?;
     let mut svg = String::new();
-    {
+    let covered = {
         let root = SVGBackend::with_string(&mut svg, (p.width, p.height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(&p.title, ("sans-serif", 22))
+        let title_font: TextStyle = ("sans-serif", 22).into_font().into();
+        let mut area = root.clone();
+        for line in title_lines(&p.title, &title_font, p.width.saturating_sub(36)) {
+            area = area.titled(&line, title_font.clone()).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        }
+        let labels: Vec<&str> = series.iter().filter(|s| !s.label.is_empty()).map(|s| s.label.as_str()).collect();
+        let (legend_w, _) = legend_size(&labels);
+        let mut chart = ChartBuilder::on(&area)
             .margin(18)
+            .margin_right(if legend_outside { 18 + legend_w as u32 + 10 } else { 18 })
             .x_label_area_size(52)
             .y_label_area_size(72)
             .build_cartesian_2d(x0..x1, y0..y1)
@@ -449,8 +499,8 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
             .y_label_formatter(&fy)
             .axis_desc_style(("sans-serif", 18))
             .label_style(("sans-serif", 14))
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(210, 210, 210))
+            .light_line_style(RGBColor(244, 244, 244))
+            .bold_line_style(RGBColor(215, 215, 215))
             .draw()
             .map_err(|e| anyhow::anyhow!("{e:?}"))?;
         let inside = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
@@ -491,9 +541,8 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                 })
                 .collect();
             chart.draw_series(bars).map_err(err)?;
-            let legend_style = style;
-            for (ri, run) in runs.into_iter().enumerate() {
-                let anno = match s.style {
+            for run in runs {
+                match s.style {
                     Style::Line => chart.draw_series(LineSeries::new(run, style)).map_err(err)?,
                     Style::Dashed => chart.draw_series(DashedLineSeries::new(run, 8, 5, style)).map_err(err)?,
                     Style::Dotted => chart.draw_series(DashedLineSeries::new(run, 2, 4, style)).map_err(err)?,
@@ -508,45 +557,21 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                         .draw_series(AreaSeries::new(run, y0, color.mix(0.18).filled()).border_style(style))
                         .map_err(err)?,
                 };
-                if ri > 0 || s.label.is_empty() {
-                    continue;
-                }
-                if s.style == Style::Points {
-                    anno.label(s.label.clone()).legend(move |(x, y)| Circle::new((x + 11, y), 3, color.filled()));
-                } else if s.style == Style::LinePoints {
-                    anno.label(s.label.clone()).legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (22, 0)], legend_style)
-                            + Circle::new((11, 0), 3, color.filled())
-                    });
-                } else if s.style == Style::Dotted {
-                    anno.label(s.label.clone()).legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (3, 0)], legend_style)
-                            + PathElement::new(vec![(9, 0), (12, 0)], legend_style)
-                            + PathElement::new(vec![(18, 0), (21, 0)], legend_style)
-                    });
-                } else if s.style == Style::Dashed {
-                    anno.label(s.label.clone()).legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (8, 0)], legend_style)
-                            + PathElement::new(vec![(13, 0), (22, 0)], legend_style)
-                    });
-                } else {
-                    anno.label(s.label.clone())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend_style));
-                }
             }
         }
-        let pos = match p.legend {
-            LegendPosition::UpperRight => SeriesLabelPosition::UpperRight,
-            LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
-            LegendPosition::LowerRight => SeriesLabelPosition::LowerRight,
-            LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
+        let area = chart.plotting_area().dim_in_pixel();
+        let base = chart.plotting_area().get_base_pixel();
+        let pinned = |p: SeriesLabelPosition| (legend_corner(&p, legend_size(&labels), area), 0);
+        let (corner, covered) = match p.legend {
+            LegendPosition::UpperRight => pinned(SeriesLabelPosition::UpperRight),
+            LegendPosition::UpperLeft => pinned(SeriesLabelPosition::UpperLeft),
+            LegendPosition::LowerRight => pinned(SeriesLabelPosition::LowerRight),
+            LegendPosition::LowerLeft => pinned(SeriesLabelPosition::LowerLeft),
+            LegendPosition::Auto if legend_outside => ((area.0 as i32 + 10, 0), 0),
+            LegendPosition::Auto if labels.is_empty() => ((0, 0), 0),
             LegendPosition::Auto => {
                 // The drawn marks in pixels of the plotting area: points, lines sampled
                 // between them, and the shaded region under an area's line.
-                let base = chart.plotting_area().get_base_pixel();
                 let px = |q: (f64, f64)| {
                     let (x, y) = chart.backend_coord(&q);
                     (x - base.0, y - base.1)
@@ -566,74 +591,134 @@ fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
                         }
                         if s.style != Style::Points {
                             if let Some(&b) = q.get(k + 1) {
-                                marks.extend((1..16).map(|j| {
-                                    let t = j as f64 / 16.0;
+                                // A sample every 2 pixels or so: no line crosses the box unseen.
+                                let (pa, pb) = (px(a), px(b));
+                                let n = ((pb.0 - pa.0).abs().max((pb.1 - pa.1).abs()) / 2).clamp(1, 2000);
+                                marks.extend((1..n).map(|j| {
+                                    let t = j as f64 / n as f64;
                                     px((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t))
                                 }));
                             }
                         }
                     }
                 }
-                let labels: Vec<&str> =
-                    series.iter().filter(|s| !s.label.is_empty()).map(|s| s.label.as_str()).collect();
-                let area = chart.plotting_area().dim_in_pixel();
-                least_covering_legend(&labels, area, &marks)
+                let (best, covered) = least_covering_legend(&labels, area, &marks);
+                (legend_corner(&best, legend_size(&labels), area), covered)
             }
         };
-        chart
-            .configure_series_labels()
-            .position(pos)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(120, 120, 120))
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        let entries: Vec<(&str, Style, RGBColor)> = series
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| !s.label.is_empty())
+            .map(|(i, s)| (s.label.as_str(), s.style, PALETTE[s.color.unwrap_or(i) % PALETTE.len()]))
+            .collect();
+        draw_legend(&root, &entries, (base.0 + corner.0, base.1 + corner.1))?;
         root.present().map_err(|e| anyhow::anyhow!("{e:?}"))?;
-    }
-    Ok(svg)
+        covered
+    };
+    Ok((svg, covered))
 }
 
-/// The legend position (as `configure_series_labels` lays it out: a box of the labels at
-/// 14 px plus the 30 px sample and 10 px margins, 5 px from the plotting area's edges) that
-/// covers the fewest of `marks` (pixels of the plotting area of size `area`), the corners
+/// The legend position (a box of the labels at 14 px plus the 30 px sample and 10 px
+/// margins, 5 px from the plotting area's edges) that covers the fewest of `marks` (pixels of the plotting area of size `area`), the corners
 /// first on a tie.
-fn least_covering_legend(labels: &[&str], area: (u32, u32), marks: &[(i32, i32)]) -> SeriesLabelPosition {
+fn least_covering_legend(labels: &[&str], area: (u32, u32), marks: &[(i32, i32)]) -> (SeriesLabelPosition, usize) {
     use SeriesLabelPosition::*;
     let candidates = [UpperRight, UpperLeft, LowerRight, LowerLeft, MiddleRight, MiddleLeft, UpperMiddle, LowerMiddle];
+    let (w, h) = legend_size(labels);
+    let covered = |p: &SeriesLabelPosition| {
+        let (x, y) = legend_corner(p, (w, h), area);
+        marks.iter().filter(|&&(mx, my)| mx >= x && mx <= x + w && my >= y && my <= y + h).count()
+    };
+    candidates
+        .into_iter()
+        .map(|p| {
+            let n = covered(&p);
+            (p, n)
+        })
+        .min_by_key(|&(_, n)| n)
+        .unwrap_or((UpperRight, 0))
+}
+
+/// The top left corner of a legend box of size `(w, h)` at position `p` of a plotting area
+/// of size `area`, 5 px from its edges, in pixels of the plotting area.
+fn legend_corner(p: &SeriesLabelPosition, (w, h): (i32, i32), area: (u32, u32)) -> (i32, i32) {
+    use SeriesLabelPosition::*;
+    let (aw, ah) = (area.0 as i32, area.1 as i32);
+    let x = match p {
+        UpperLeft | MiddleLeft | LowerLeft => 5,
+        UpperMiddle | MiddleMiddle | LowerMiddle => (aw - w) / 2,
+        _ => aw - w - 5,
+    };
+    let y = match p {
+        UpperLeft | UpperMiddle | UpperRight => 5,
+        MiddleLeft | MiddleMiddle | MiddleRight => (ah - h) / 2,
+        _ => ah - h - 5,
+    };
+    (x, y)
+}
+
+/// Draws the legend box with its top left corner at `at` (pixels of `root`): per entry a
+/// 22 px sample of the series' style and colour, then its label.
+fn draw_legend(
+    root: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    entries: &[(&str, Style, RGBColor)],
+    at: (i32, i32),
+) -> Result<()> {
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let err = |e| anyhow::anyhow!("{e:?}");
+    let labels: Vec<&str> = entries.iter().map(|e| e.0).collect();
+    let (w, h) = legend_size(&labels);
+    let (x, y) = at;
+    root.draw(&Rectangle::new([(x, y), (x + w, y + h)], WHITE.mix(0.85).filled())).map_err(err)?;
+    root.draw(&Rectangle::new([(x, y), (x + w, y + h)], RGBColor(120, 120, 120))).map_err(err)?;
+    let row = (h - 20) as f64 / entries.len() as f64;
+    let font: TextStyle = ("sans-serif", 14).into_font().into();
+    let font = font.pos(plotters::style::text_anchor::Pos::new(
+        plotters::style::text_anchor::HPos::Left,
+        plotters::style::text_anchor::VPos::Center,
+    ));
+    for (k, &(label, style, color)) in entries.iter().enumerate() {
+        let (sx, sy) = (x + 10, y + 10 + (row * (k as f64 + 0.5)).round() as i32);
+        let stroke = ShapeStyle::from(&color).stroke_width(2);
+        let segments: &[(i32, i32)] = match style {
+            Style::Points => &[],
+            Style::Dotted => &[(0, 3), (9, 12), (18, 21)],
+            Style::Dashed => &[(0, 8), (13, 22)],
+            Style::Line | Style::LinePoints | Style::Area => &[(0, 22)],
+        };
+        for &(a, b) in segments {
+            root.draw(&PathElement::new(vec![(sx + a, sy), (sx + b, sy)], stroke)).map_err(err)?;
+        }
+        if matches!(style, Style::Points | Style::LinePoints) {
+            root.draw(&Circle::new((sx + 11, sy), 3, color.filled())).map_err(err)?;
+        }
+        root.draw(&Text::new(label, (sx + 30, sy), font.clone())).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The legend box in pixels: the labels at 14 px plus the 30 px sample and 10 px margins.
+fn legend_size(labels: &[&str]) -> (i32, i32) {
     let font: TextStyle = ("sans-serif", 14).into_font().into();
     let mut text = MultiLineText::<_, &str>::new((0, 0), &font);
     for l in labels {
         text.push_line(*l);
     }
-    let Ok((w, h)) = text.estimate_dimension() else { return UpperRight };
-    let (w, h) = (w + 30 + 20, h + 20);
-    let (aw, ah) = (area.0 as i32, area.1 as i32);
-    let corner = |p: &SeriesLabelPosition| -> (i32, i32) {
-        let x = match p {
-            UpperLeft | MiddleLeft | LowerLeft => 5,
-            UpperMiddle | MiddleMiddle | LowerMiddle => (aw - w) / 2,
-            _ => aw - w - 5,
-        };
-        let y = match p {
-            UpperLeft | UpperMiddle | UpperRight => 5,
-            MiddleLeft | MiddleMiddle | MiddleRight => (ah - h) / 2,
-            _ => ah - h - 5,
-        };
-        (x, y)
-    };
-    let covered = |p: &SeriesLabelPosition| {
-        let (x, y) = corner(p);
-        marks.iter().filter(|&&(mx, my)| mx >= x && mx <= x + w && my >= y && my <= y + h).count()
-    };
-    candidates.into_iter().min_by_key(covered).unwrap_or(UpperRight)
+    let (w, h) = text.estimate_dimension().unwrap_or((0, 0));
+    (w + 30 + 20, h + 20)
 }
 
 pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 12;
+    const VERSION: u32 = 13;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
+    const COLUMNS: &'static [&'static str] =
+        &["series", "x", "y", "x_name", "y_name", "group_by", "group", "group_value", "y_error"];
     type Params = FigureParams;
 
     fn validate(p: &FigureParams) -> Vec<FieldError> {
@@ -896,11 +981,87 @@ mod tests {
                 .collect()
         };
         let upper = grid(&|_, y| y < 200);
-        assert!(matches!(least_covering_legend(&labels, area, &upper), P::LowerRight));
+        assert!(matches!(least_covering_legend(&labels, area, &upper).0, P::LowerRight));
         let all_but_middle_right = grid(&|x, y| !(x > 450 && (150..250).contains(&y)));
-        assert!(matches!(least_covering_legend(&labels, area, &all_but_middle_right), P::MiddleRight));
+        assert!(matches!(least_covering_legend(&labels, area, &all_but_middle_right).0, P::MiddleRight));
         // Nothing drawn: the first corner.
-        assert!(matches!(least_covering_legend(&labels, area, &[]), P::UpperRight));
+        assert!(matches!(least_covering_legend(&labels, area, &[]).0, P::UpperRight));
+    }
+
+    #[test]
+    fn a_legend_that_covers_data_everywhere_inside_goes_outside_the_axes() {
+        // Ten horizontal lines across the whole 400 x 300 figure leave no place inside the
+        // axes for a legend of ten labels: the automatic legend is drawn right of the axes
+        // (its labels start past the last x tick label), a pinned one stays inside.
+        let x: Vec<f64> = (0..10).flat_map(|_| [0.0, 1.0]).collect();
+        let y: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
+        let g: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
+        let t = Table::new().with_f64("x", x).with_f64("a", y).with_f64("g", g);
+        let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+        let mut l = layer("a", None);
+        l.label = "curve number {g}".into();
+        let mut fig = test_figure(vec![Layer::Data(l)]);
+        fig.legend = LegendPosition::Auto;
+        let series = data_series(
+            match &fig.layers[0] {
+                Layer::Data(d) => d,
+                _ => unreachable!(),
+            },
+            &inputs,
+        )
+        .unwrap();
+        let (_, covered) = draw(&fig, &series, false).unwrap();
+        assert!(covered > 0);
+        let label_x = |svg: &str| -> f64 {
+            let at = svg.find(">\ncurve number 0\n<").expect("label drawn");
+            let tag = &svg[svg[..at].rfind("<text").unwrap()..at];
+            let x = tag.split("x=\"").nth(1).unwrap();
+            x[..x.find('"').unwrap()].parse().unwrap()
+        };
+        // The rightmost point of the data's lines (those longer than a legend's 22 px sample).
+        let line_end = |svg: &str| -> f64 {
+            svg.split("<polyline")
+                .skip(1)
+                .map(|p| {
+                    let pts = p.split("points=\"").nth(1).unwrap();
+                    let xs: Vec<f64> = pts[..pts.find('"').unwrap()]
+                        .split_whitespace()
+                        .map(|xy| xy.split(',').next().unwrap().parse::<f64>().unwrap())
+                        .collect();
+                    let (lo, hi) = xs.iter().fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+                    if hi - lo > 30.0 {
+                        hi
+                    } else {
+                        f64::MIN
+                    }
+                })
+                .fold(f64::MIN, f64::max)
+        };
+        let outside = render(&fig, &series).unwrap();
+        assert!(line_end(&outside) < label_x(&outside) - 30.0, "{} {}", line_end(&outside), label_x(&outside));
+        fig.legend = LegendPosition::UpperRight;
+        let inside = render(&fig, &series).unwrap();
+        assert!(line_end(&inside) > label_x(&inside), "{} {}", line_end(&inside), label_x(&inside));
+    }
+
+    #[test]
+    fn a_long_title_is_wrapped_to_the_figure_width() {
+        let font: TextStyle = ("sans-serif", 22).into_font().into();
+        let title =
+            "Fig. 3.9: critical surface energy against thickness, loading to δ/R = 0.35, four friction coefficients";
+        let lines = title_lines(title, &font, 764);
+        assert!(lines.len() >= 2, "{lines:?}");
+        assert_eq!(lines.join(" "), title);
+        assert_eq!(title_lines("short", &font, 764), vec!["short".to_string()]);
+    }
+
+    #[test]
+    fn fit_labels_carry_the_error_to_two_significant_digits() {
+        assert_eq!(with_uncertainty(0.666_712, 0.001_234), ("0.6667".into(), "0.0012".into()));
+        assert_eq!(with_uncertainty(1.5049, 0.0871), ("1.505".into(), "0.087".into()));
+        assert_eq!(with_uncertainty(12.34, 3.2), ("12.3".into(), "3.2".into()));
+        assert_eq!(with_uncertainty(120.0, 31.0), ("120".into(), "31".into()));
+        assert_eq!(with_uncertainty(0.5, 0.0), ("0.5".into(), "0".into()));
     }
 
     #[test]

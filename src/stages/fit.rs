@@ -1,7 +1,6 @@
 //! `fit.powerlaw`: a power law y = c x^s fitted to columns of a needed stage's table over
 //! a declared x range, per group, with the standard errors of slope and prefactor.
 
-use super::check;
 use crate::numerics::fit::power_law;
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -17,6 +16,7 @@ pub struct FitParams {
     pub x: String,
     pub y: String,
     /// Only points with x in [x_min, x_max] are fitted.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub x_min: f64,
     pub x_max: f64,
     /// One fit per distinct value of this (numeric) column.
@@ -34,11 +34,21 @@ impl Kind for FitPowerLaw {
     const VERSION: u32 = 1;
     const DOC: &'static str =
         "Power law y = c x^s fitted over an x range (log-log least squares), with standard errors";
+    const COLUMNS: &'static [&'static str] = &[
+        "slope",
+        "slope_std_error",
+        "prefactor",
+        "prefactor_std_error",
+        "r_squared",
+        "n_points",
+        "x_min",
+        "x_max",
+        "expected_slope",
+    ];
     type Params = FitParams;
 
     fn validate(p: &FitParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::positive(&mut e, "x_min", p.x_min);
         if !(p.x_max > p.x_min) {
             e.push(FieldError::new("x_max", format!("must exceed x_min ({}), got {}", p.x_min, p.x_max)));
         }

@@ -16,12 +16,15 @@ macro_rules! with_material_fields {
             /// S(tau) ~ tau^-s on (tau1, tau2) (Eq. 5.24), sweepable; then tau = tau2 (in V0 or
             /// v0). Default: the standard linear solid.
             #[serde(default, skip_serializing_if = "Option::is_none")]
+            #[schemars(range(min = 0), extend("exclusiveMaximum" = 1.0))]
             pub s: Option<f64>,
             /// Power-law spectrum: tau1/tau2 (default 1e-6).
             #[serde(default, skip_serializing_if = "Option::is_none")]
+            #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
             pub tau_ratio: Option<f64>,
             /// Power-law spectrum: bins per decade of its discretisation (default 8).
             #[serde(default, skip_serializing_if = "Option::is_none")]
+            #[schemars(range(min = 1, max = 64))]
             pub per_decade: Option<usize>,
             /// Material: a Maxwell-Wiechert relaxation Prony series, [[weight, relaxation time /
             /// tau], ...] (weights normalised; with k it fixes the creep function, Eq. 2.27).
@@ -68,21 +71,6 @@ impl Material<'_> {
         if self.s.is_none() && (self.tau_ratio.is_some() || self.per_decade.is_some()) {
             let name = if self.tau_ratio.is_some() { "tau_ratio" } else { "per_decade" };
             errs.push(FieldError::new(name, "only meaningful with `s` (the power-law spectrum)"));
-        }
-        if let Some(s) = self.s {
-            if !(0.0..1.0).contains(&s) {
-                errs.push(FieldError::new("s", format!("the power-law exponent must lie in [0, 1), got {s}")));
-            }
-        }
-        if let Some(t) = self.tau_ratio {
-            if !(t > 0.0 && t < 1.0) {
-                errs.push(FieldError::new("tau_ratio", format!("tau1/tau2 must lie in (0, 1), got {t}")));
-            }
-        }
-        if let Some(m) = self.per_decade {
-            if !(1..=64).contains(&m) {
-                errs.push(FieldError::new("per_decade", format!("must lie in 1..=64, got {m}")));
-            }
         }
         if let Some(p) = self.prony {
             if p.is_empty() || p.len() > 200 {

@@ -64,55 +64,17 @@ pub(crate) fn finite(x: f64) -> f64 {
     }
 }
 
-/// Shared parameter checks, returning the errors for one field.
+/// Shared parameter checks and bounds. Numeric bounds are declared on the parameter types
+/// (`#[schemars(range(..))]`, `#[schemars(extend("exclusiveMinimum" = ..))]`): the schema,
+/// `repro kinds KIND` and the check of every point (`pipeline::kind::bound_errors`) read
+/// them there. The upper bounds of sizes keep a task's memory and time to what a laptop
+/// has (a size that passes is never an allocation that aborts).
 pub(crate) mod check {
     use crate::pipeline::kind::FieldError;
-
-    pub fn positive(errs: &mut Vec<FieldError>, name: &str, x: f64) {
-        if !(x > 0.0) {
-            errs.push(FieldError::new(name, format!("must be positive, got {x}")));
-        }
-    }
-
-    pub fn in_open(errs: &mut Vec<FieldError>, name: &str, x: f64, lo: f64, hi: f64, what: &str) {
-        if !(x > lo && x < hi) {
-            errs.push(FieldError::new(name, format!("{what} must lie in ({lo}, {hi}), got {x}")));
-        }
-    }
 
     pub fn non_negative(errs: &mut Vec<FieldError>, name: &str, x: f64) {
         if !(x >= 0.0 && x.is_finite()) {
             errs.push(FieldError::new(name, format!("must be zero or positive, got {x}")));
-        }
-    }
-
-    /// An optional number of boundary elements: 16..=32000.
-    pub fn elements(errs: &mut Vec<FieldError>, name: &str, n: Option<usize>) {
-        if let Some(n) = n {
-            if !(16..=32_000).contains(&n) {
-                errs.push(FieldError::new(name, format!("must lie in 16..=32000, got {n}")));
-            }
-        }
-    }
-
-    /// An optional requested relative accuracy in (0, 1).
-    pub fn rel_tol(errs: &mut Vec<FieldError>, name: &str, t: Option<f64>) {
-        if let Some(t) = t {
-            in_open(errs, name, t, 0.0, 1.0, "the requested accuracy");
-        }
-    }
-
-    pub fn at_least(errs: &mut Vec<FieldError>, name: &str, x: usize, lo: usize) {
-        if x < lo {
-            errs.push(FieldError::new(name, format!("must be at least {lo}, got {x}")));
-        }
-    }
-
-    /// A size (points, elements, steps) in lo..=hi: the upper bounds keep a task's memory and
-    /// time to what a laptop has (a size that passes is never an allocation that aborts).
-    pub fn size(errs: &mut Vec<FieldError>, name: &str, x: usize, lo: usize, hi: usize) {
-        if !(lo..=hi).contains(&x) {
-            errs.push(FieldError::new(name, format!("must lie in {lo}..={hi}, got {x}")));
         }
     }
 

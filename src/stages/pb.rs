@@ -3,7 +3,6 @@
 //! Figs. 5.3, 5.5-5.7), from the low-speed law (Eq. 5.20, F_T* ~ V0) and the intermediate
 //! law (Eq. 5.21, F_T* ~ V0^(1/2)) of `theory::persson_brener`.
 
-use super::check;
 use crate::numerics::fit::{power_law, power_law_regime};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -35,9 +34,11 @@ pub struct CalibrateParams {
     /// A regime is the longest run of points whose local slopes d ln F / d ln V0 lie within
     /// this of the law's slope (1 or 1/2); default 0.1.
     #[serde(default = "default_tol")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.25))]
     pub slope_tolerance: f64,
     /// The fewest points a regime may have (default 3).
     #[serde(default = "default_min_points")]
+    #[schemars(range(min = 3))]
     pub min_points: usize,
     /// Fixed V0 ranges instead of the detected regimes.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -66,12 +67,28 @@ impl Kind for PbCalibrate {
     const VERSION: u32 = 2;
     const DOC: &'static str =
         "Persson-Brener prefactor alpha (Eq. 5.18) fitted to F_T*(V0) curves: linear (Eq. 5.20) and square-root (Eq. 5.21) regimes";
+    const COLUMNS: &'static [&'static str] = &[
+        "lambda",
+        "W",
+        "k",
+        "s",
+        "regime",
+        "alpha",
+        "alpha_std_error",
+        "alpha_spread",
+        "n_points",
+        "x_min",
+        "x_max",
+        "slope",
+        "slope_std_error",
+        "prefactor",
+        "fitted_slope",
+        "fitted_slope_std_error",
+    ];
     type Params = CalibrateParams;
 
     fn validate(p: &CalibrateParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::in_open(&mut e, "slope_tolerance", p.slope_tolerance, 0.0, 0.25, "the slope tolerance");
-        check::at_least(&mut e, "min_points", p.min_points, 3);
         for (name, r) in [("linear_range", p.linear_range), ("sqrt_range", p.sqrt_range)] {
             if let Some([a, b]) = r {
                 if !(a > 0.0 && b > a) {

@@ -1,10 +1,10 @@
 //! Stage kind `bem.pulloff`: the pull-off load of the Chapter 4/5 model at one speed
 //! (`bem::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
 
-use super::{check, finite};
+use super::finite;
 use crate::bem::branch::{pull_off, PullOff};
 use crate::bem::solver::{self, ErrorShares, Mesh, Params};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::kind::{Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use anyhow::Result;
 use schemars::JsonSchema;
@@ -15,18 +15,23 @@ use serde::{Deserialize, Serialize};
 #[allow(non_snake_case)]
 pub struct PullOffParams {
     /// Maugis-Tabor parameter lambda (Eq. 4.9), > 0 (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub lambda: f64,
     /// Modulus ratio k = E0/E_inf in (0, 1) (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub k: f64,
     /// Speed V = v tau/beta >= 0 (sweepable): independent of the load, which is the unknown
     /// here; the table also gives V0 = V/a0 with a0 the Hertz half-width of the pull-off load.
+    #[schemars(range(min = 0))]
     pub V: f64,
     /// A fixed number of elements (default: from `bem::solver::starting_mesh`, doubled until
     /// the Richardson estimate of the pull-off load meets rel_tol).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 16, max = 32_000))]
     pub n: Option<usize>,
     /// Requested relative accuracy of the pull-off load (default 1e-3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub rel_tol: Option<f64>,
 }
 
@@ -47,17 +52,28 @@ impl Kind for BemPullOff {
     const DOC: &'static str =
         "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked by pseudo-arclength in approach and load) at speed V";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];
+    const COLUMNS: &'static [&'static str] = &[
+        "lambda",
+        "k",
+        "V",
+        "V0",
+        "W_pulloff",
+        "A",
+        "two_A",
+        "x_lead",
+        "x_trail",
+        "mu_star",
+        "F_T",
+        "converged",
+        "evaluations",
+        "iterations",
+        "error_estimate",
+        "n",
+        "half_length",
+        "zone_elements",
+        "wall_time_s",
+    ];
     type Params = PullOffParams;
-
-    fn validate(p: &PullOffParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check::positive(&mut e, "lambda", p.lambda);
-        check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
-        check::non_negative(&mut e, "V", p.V);
-        check::elements(&mut e, "n", p.n);
-        check::rel_tol(&mut e, "rel_tol", p.rel_tol);
-        e
-    }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();

@@ -2,7 +2,6 @@
 //! its imperfection and the stability test that decides the snap-through, with the
 //! conversion to the physics' types (`fem::material::Law`, `fem::stability::Criterion`).
 
-use super::check;
 use crate::fem::material::Law;
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{Criterion, LIFT_THRESHOLD};
@@ -53,12 +52,14 @@ fn default_width() -> f64 {
 pub struct Imperfection {
     /// Apex force in units of F_c = E h^3 / R (default 0).
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub apex_force: f64,
     /// Depth of the dimple in units of h (default 0).
     #[serde(default)]
     pub dimple: f64,
     /// Gaussian radius of the dimple along the meridian, in units of sqrt(R h) (default 1).
     #[serde(default = "default_width")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub width: f64,
 }
 
@@ -74,14 +75,12 @@ impl Imperfection {
     }
 
     pub fn validate(&self, e: &mut Vec<FieldError>, prefix: &str) {
-        check::non_negative(e, &format!("{prefix}imperfection.apex_force"), self.apex_force);
         if !(self.dimple.abs() < 0.5) {
             e.push(FieldError::new(
                 &format!("{prefix}imperfection.dimple"),
                 format!("a dimple deeper than h/2 is not an imperfection, got {} h", self.dimple),
             ));
         }
-        check::positive(e, &format!("{prefix}imperfection.width"), self.width);
     }
 
     /// `mesh` with the dimple (R and h are the mesh's).

@@ -28,12 +28,10 @@ fn radii(a_min: f64, a_max: f64, n: usize) -> Vec<f64> {
     (0..n).map(|i| a_min * (a_max / a_min).powf(i as f64 / (n - 1) as f64)).collect()
 }
 
-fn check_radii(e: &mut Vec<FieldError>, a_min: f64, a_max: f64, n: usize) {
-    check::positive(e, "A_min", a_min);
+fn check_radii(e: &mut Vec<FieldError>, a_min: f64, a_max: f64) {
     if !(a_max > a_min) {
         e.push(FieldError::new("A_max", format!("must exceed A_min ({a_min}), got {a_max}")));
     }
-    check::size(e, "n", n, 2, check::MAX_POINTS);
 }
 
 #[derive(Serialize, Deserialize, JsonSchema)]
@@ -41,15 +39,18 @@ fn check_radii(e: &mut Vec<FieldError>, a_min: f64, a_max: f64, n: usize) {
 #[allow(non_snake_case)]
 pub struct MaugisParams {
     /// Maugis' transition parameter lambda = 2 sigma0 (R / (pi w K^2))^(1/3) (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub lambda: f64,
     /// Smallest dimensionless contact radius A.
     #[serde(default = "default_a_min")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub A_min: f64,
     /// Largest dimensionless contact radius A.
     #[serde(default = "default_a_max")]
     pub A_max: f64,
     /// Number of radii (log-spaced).
     #[serde(default = "default_n")]
+    #[schemars(range(min = 2, max = check::MAX_POINTS))]
     pub n: usize,
 }
 
@@ -62,12 +63,12 @@ impl Kind for MaugisDugdale {
     const DOC: &'static str =
         "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    const COLUMNS: &'static [&'static str] = &["lambda", "A_bar", "P_bar", "approach_bar", "m", "error_estimate"];
     type Params = MaugisParams;
 
     fn validate(p: &MaugisParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::positive(&mut e, "lambda", p.lambda);
-        check_radii(&mut e, p.A_min, p.A_max, p.n);
+        check_radii(&mut e, p.A_min, p.A_max);
         e
     }
 
@@ -97,15 +98,8 @@ impl Kind for MaugisDugdale {
 #[serde(deny_unknown_fields)]
 pub struct PullOffParams {
     /// Maugis' transition parameter (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub lambda: f64,
-}
-
-impl PullOffParams {
-    fn validate(&self) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check::positive(&mut e, "lambda", self.lambda);
-        e
-    }
 }
 
 /// Pull-off load of the Maugis–Dugdale sphere under load control.
@@ -116,11 +110,9 @@ impl Kind for MaugisPullOff {
     const VERSION: u32 = 2;
     const DOC: &'static str = "Maugis-Dugdale pull-off load (minimum of P_bar over A_bar); JKR -3/2, DMT -2";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    const COLUMNS: &'static [&'static str] =
+        &["lambda", "P_bar_pulloff", "A_bar_pulloff", "error_estimate", "P_bar_jkr", "P_bar_dmt"];
     type Params = PullOffParams;
-
-    fn validate(p: &PullOffParams) -> Vec<FieldError> {
-        p.validate()
-    }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let Some(po) = classical::maugis_pull_off(p.lambda) else {
@@ -147,11 +139,8 @@ impl Kind for LinePullOff {
     const DOC: &'static str =
         "2D line-contact pull-off W: Maugis-Dugdale, JKR -3(pi/16)^(1/3), rigid Lennard-Jones -2.434 sqrt(lambda)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
+    const COLUMNS: &'static [&'static str] = &["lambda", "W_md", "A_md", "error_estimate", "W_jkr", "W_rigid_lj"];
     type Params = PullOffParams;
-
-    fn validate(p: &PullOffParams) -> Vec<FieldError> {
-        p.validate()
-    }
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let Some(po) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
@@ -173,10 +162,12 @@ impl Kind for LinePullOff {
 #[allow(non_snake_case)]
 pub struct LimitsParams {
     #[serde(default = "default_a_min")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub A_min: f64,
     #[serde(default = "default_a_max")]
     pub A_max: f64,
     #[serde(default = "default_n")]
+    #[schemars(range(min = 2, max = check::MAX_POINTS))]
     pub n: usize,
 }
 
@@ -187,11 +178,12 @@ impl Kind for SphereLimits {
     const NAME: &'static str = "theory.sphere_limits";
     const VERSION: u32 = 1;
     const DOC: &'static str = "Hertz (P = A^3), JKR (A^3 - sqrt(6 A^3)) and DMT (A^3 - 2) curves in Maugis' units";
+    const COLUMNS: &'static [&'static str] = &["model", "A_bar", "P_bar"];
     type Params = LimitsParams;
 
     fn validate(p: &LimitsParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check_radii(&mut e, p.A_min, p.A_max, p.n);
+        check_radii(&mut e, p.A_min, p.A_max);
         e
     }
 
@@ -223,9 +215,11 @@ fn default_load() -> f64 {
 pub struct PressureParams {
     /// Load in Maugis' units, P = F / (pi w R); must exceed the JKR pull-off -3/2.
     #[serde(default = "default_load")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub P_bar: f64,
     /// Number of radial points per model.
     #[serde(default = "default_n")]
+    #[schemars(range(min = 10, max = check::MAX_POINTS))]
     pub n: usize,
 }
 
@@ -236,14 +230,8 @@ impl Kind for HertzJkrPressure {
     const NAME: &'static str = "theory.hertz_jkr_pressure";
     const VERSION: u32 = 1;
     const DOC: &'static str = "Hertz and JKR pressure p/p0_Hertz vs r/a_Hertz at the same load (Fig. 2.4)";
+    const COLUMNS: &'static [&'static str] = &["model", "P_bar", "r_over_aH", "p_over_p0H"];
     type Params = PressureParams;
-
-    fn validate(p: &PressureParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check::positive(&mut e, "P_bar", p.P_bar);
-        check::size(&mut e, "n", p.n, 10, check::MAX_POINTS);
-        e
-    }
 
     fn run(p: &PressureParams, _: &Inputs) -> Result<Output> {
         let a_h = p.P_bar.cbrt();
@@ -282,37 +270,17 @@ impl Kind for HertzJkrPressure {
 #[allow(non_snake_case)]
 pub struct PerssonParams {
     /// 1/k = E_inf / E0 (sweepable), > 1.
+    #[schemars(extend("exclusiveMinimum" = 1.0))]
     pub inv_k: f64,
-    /// V0 = v tau / a0 (sweepable), > 0.
+    /// V0 = v tau / a0 (sweepable), in (0, 1e100]: beyond 1e100 mu* (about 1/V0 there)
+    /// underflows the quadrature's relative tolerance.
+    #[schemars(extend("exclusiveMinimum" = 0), range(max = 1e100))]
     pub V0: f64,
-    /// Relative tolerance of the quadrature.
+    /// Relative tolerance of the quadrature, in [1e-14, 0.01): below 1e-14 double precision
+    /// cannot meet it (at 1e-16 the quadrature refines for a minute and returns the same digits).
     #[serde(default = "default_rel_tol")]
+    #[schemars(range(min = 1e-14), extend("exclusiveMaximum" = 0.01))]
     pub rel_tol: f64,
-}
-
-fn check_inv_k(e: &mut Vec<FieldError>, inv_k: f64) {
-    if !(inv_k > 1.0 && inv_k.is_finite()) {
-        e.push(FieldError::new(
-            "inv_k",
-            format!("1/k = E_inf/E0 must exceed 1 (the modulus ratio k lies in (0, 1)), got {inv_k}"),
-        ));
-    }
-}
-
-/// A quadrature tolerance: below 1e-14 double precision cannot meet it (at 1e-16 the
-/// quadrature of `theory.persson` refines for a minute and returns the same digits).
-fn check_tol(e: &mut Vec<FieldError>, tol: f64) {
-    if !(1e-14..0.01).contains(&tol) {
-        e.push(FieldError::new("rel_tol", format!("the tolerance must lie in [1e-14, 0.01), got {tol}")));
-    }
-}
-
-/// A speed V0 for Persson's friction: beyond 1e100 mu* (about 1/V0 there) underflows the
-/// quadrature's relative tolerance.
-fn check_speed(e: &mut Vec<FieldError>, v0: f64) {
-    if !(v0 > 0.0 && v0 <= 1e100) {
-        e.push(FieldError::new("V0", format!("must lie in (0, 1e100], got {v0:e}")));
-    }
 }
 
 /// Persson's adhesionless friction mu* at one (1/k, V0) (Appendix A).
@@ -324,15 +292,8 @@ impl Kind for Persson {
     const DOC: &'static str =
         "Persson's adhesionless friction mu* = mu R/a0 vs V0 = v tau/a0 for a standard linear solid (Eqs. 7.1-7.2)";
     const SWEEPABLE: &'static [&'static str] = &["inv_k", "V0"];
+    const COLUMNS: &'static [&'static str] = &["inv_k", "k", "V0", "mu_star", "error_estimate"];
     type Params = PerssonParams;
-
-    fn validate(p: &PerssonParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check_inv_k(&mut e, p.inv_k);
-        check_speed(&mut e, p.V0);
-        check_tol(&mut e, p.rel_tol);
-        e
-    }
 
     fn run(p: &PerssonParams, _: &Inputs) -> Result<Output> {
         let f = persson::mu_star(1.0 / p.inv_k, p.V0, p.rel_tol);
@@ -350,8 +311,10 @@ impl Kind for Persson {
 #[serde(deny_unknown_fields)]
 pub struct PerssonMaxParams {
     /// 1/k = E_inf / E0 (sweepable), > 1.
+    #[schemars(extend("exclusiveMinimum" = 1.0))]
     pub inv_k: f64,
     #[serde(default = "default_rel_tol")]
+    #[schemars(range(min = 1e-14), extend("exclusiveMaximum" = 0.01))]
     pub rel_tol: f64,
 }
 
@@ -363,14 +326,8 @@ impl Kind for PerssonMax {
     const VERSION: u32 = 1;
     const DOC: &'static str = "Maximum over V0 of Persson's adhesionless mu*, and where it occurs";
     const SWEEPABLE: &'static [&'static str] = &["inv_k"];
+    const COLUMNS: &'static [&'static str] = &["inv_k", "k", "mu_star_max", "V0_at_max", "error_estimate"];
     type Params = PerssonMaxParams;
-
-    fn validate(p: &PerssonMaxParams) -> Vec<FieldError> {
-        let mut e = Vec::new();
-        check_inv_k(&mut e, p.inv_k);
-        check_tol(&mut e, p.rel_tol);
-        e
-    }
 
     fn run(p: &PerssonMaxParams, _: &Inputs) -> Result<Output> {
         let (v, f) = persson::max_mu_star(1.0 / p.inv_k, p.rel_tol);
@@ -390,8 +347,10 @@ with_material_fields! {
 #[allow(non_snake_case)]
 pub struct PbParams {
     /// Modulus ratio k = E0 / E_inf in (0, 1) (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub k: f64,
     /// V_PB = v / v0, v0 = c0 / (2 pi tau) (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub V_PB: f64,
 }
 }
@@ -405,12 +364,12 @@ impl Kind for PerssonBrener {
     const VERSION: u32 = 3;
     const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
     const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
+    const COLUMNS: &'static [&'static str] =
+        &["k", "V_PB", "G_trail_over_dgamma", "F_T_PB", "error_estimate", "s", "n_eq_5_28", "material"];
     type Params = PbParams;
 
     fn validate(p: &PbParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::in_open(&mut e, "k", p.k, 0.0, 1.0, "the modulus ratio k = E0/E_inf");
-        check::positive(&mut e, "V_PB", p.V_PB);
         p.material().validate(&mut e);
         e
     }
@@ -449,10 +408,12 @@ fn finite(e: f64) -> f64 {
 pub struct LennardJonesParams {
     /// Separations h/eps from `z_min` to `z_max` (eps the equilibrium separation), `n` points.
     #[serde(default = "default_z_min")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub z_min: f64,
     #[serde(default = "default_z_max")]
     pub z_max: f64,
     #[serde(default = "default_n")]
+    #[schemars(range(min = 2, max = check::MAX_POINTS))]
     pub n: usize,
 }
 
@@ -472,15 +433,14 @@ impl Kind for LennardJones {
     const VERSION: u32 = 1;
     const DOC: &'static str =
         "The Lennard-Jones 3-9 law of the solvers: energy/dgamma and pressure/sigma0 vs separation h/eps (Fig. 2.3)";
+    const COLUMNS: &'static [&'static str] = &["h_over_eps", "energy_over_dgamma", "pressure_over_sigma0"];
     type Params = LennardJonesParams;
 
     fn validate(p: &LennardJonesParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        check::positive(&mut e, "z_min", p.z_min);
         if !(p.z_max > p.z_min) {
             e.push(FieldError::new("z_max", format!("must exceed z_min ({}), got {}", p.z_min, p.z_max)));
         }
-        check::size(&mut e, "n", p.n, 2, check::MAX_POINTS);
         e
     }
 

@@ -29,6 +29,7 @@ impl Kind for Sleep {
     const VERSION: u32 = 1;
     const DOC: &'static str = "Waits `ms` milliseconds and returns `x` (for testing the orchestrator)";
     const SWEEPABLE: &'static [&'static str] = &["x"];
+    const COLUMNS: &'static [&'static str] = &["x", "upstream_rows"];
     type Params = SleepParams;
 
     fn validate(p: &SleepParams) -> Vec<FieldError> {
@@ -71,6 +72,7 @@ impl Kind for Fail {
     const VERSION: u32 = 1;
     const DOC: &'static str = "Fails with `message` when x <= 0 (for testing the orchestrator)";
     const SWEEPABLE: &'static [&'static str] = &["x"];
+    const COLUMNS: &'static [&'static str] = &["x"];
     type Params = FailParams;
 
     fn run(p: &FailParams, _inputs: &Inputs) -> Result<Output> {
