@@ -97,6 +97,11 @@ enum Command {
         /// SLURM: resubmissions of a task whose worker ended without a result.
         #[arg(long, default_value_t = 2)]
         retries: u32,
+        /// Every task's time limit in seconds, over the stages' `time_limit` and the kinds'
+        /// defaults (`repro kinds KIND`): a task past it is recorded as timed out and the
+        /// others carry on; SLURM jobs ask for it as `--time`.
+        #[arg(long, value_parser = positive_seconds)]
+        time_limit: Option<f64>,
     },
     /// Compute one task of a SLURM job array (run by the SLURM executor, not by hand).
     Worker {
@@ -284,6 +289,13 @@ fn fail(e: anyhow::Error) -> ExitCode {
 }
 
 /// A kind's parameters from its schema: name, type, default, sweepable, meaning.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("a positive number of seconds, got `{s}`")),
+    }
+}
+
 fn describe_kind(k: &dyn repro::pipeline::kind::DynKind, registry: &repro::pipeline::kind::Registry) -> String {
     use serde_json::Value;
     let schema = k.params_schema();
@@ -318,7 +330,13 @@ fn describe_kind(k: &dyn repro::pipeline::kind::DynKind, registry: &repro::pipel
             },
         }
     };
-    let mut out = format!("{} (code version {}): {}\n\n", k.name(), k.version(), k.doc());
+    let mut out = format!(
+        "{} (code version {}): {}\ntime limit per task: {} s (a stage's `time_limit`, `repro run --time-limit`)\n\n",
+        k.name(),
+        k.version(),
+        k.doc(),
+        k.time_limit_s()
+    );
     let required: Vec<&str> = schema
         .get("required")
         .and_then(Value::as_array)
@@ -389,6 +407,7 @@ fn main() -> ExitCode {
             partition,
             max_jobs,
             retries,
+            time_limit,
         } => {
             let p = load_with(&pipeline, &registry, &set)?;
             let executor = match executor {
@@ -408,6 +427,7 @@ fn main() -> ExitCode {
                 lock: if no_wait { LockMode::Refuse } else { LockMode::Wait },
                 progress: !quiet,
                 executor,
+                time_limit_s: time_limit,
             };
             let rep = executor::run(&p, &registry, &opts)?;
             if let Some(path) = report {

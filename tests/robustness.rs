@@ -259,3 +259,57 @@ fn the_cache_never_writes_through_a_link_it_did_not_create() {
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 0);
 }
+
+#[test]
+fn a_task_past_its_time_limit_is_recorded_as_timed_out_and_the_others_carry_on() {
+    // A stage's `time_limit` stops its task at the next checkpoint (util.sleep checks every
+    // 10 ms, the solvers at each Newton iteration); the run goes on and writes its report.
+    let s = Scratch::new("time-limit");
+    let pipeline = |limit: &str| {
+        format!(
+            "stages:\n  - name: slow\n    kind: util.sleep\n{limit}    params: {{x: 1, ms: 600000}}\n  - name: quick\n    kind: util.sleep\n    params: {{x: [1, 2], ms: 10}}\n"
+        )
+    };
+    s.write("p.yaml", &pipeline("    time_limit: 0.5\n"));
+    let t0 = Instant::now();
+    let (code, err, report) = s.run("p.yaml", &[]);
+    assert!(t0.elapsed() < Duration::from_secs(60), "{:?}", t0.elapsed());
+    assert_eq!(code, 1, "{err}");
+    let tasks = report.tasks();
+    let slow: Vec<_> = tasks.iter().filter(|t| t["stage"] == "slow").collect();
+    assert_eq!(slow.len(), 1);
+    assert_eq!(slow[0]["status"], "failed");
+    let error = slow[0]["error"].as_str().unwrap();
+    assert!(error.starts_with("timed out: past its time limit of 0.5 s"), "{error}");
+    assert!(slow[0]["wall_time_s"].as_f64().unwrap() < 30.0);
+    assert_eq!(tasks.iter().filter(|t| t["stage"] == "quick" && t["status"] == "computed").count(), 2);
+    // The command line's limit is over the stage's and the kind's.
+    s.write("p.yaml", &pipeline(""));
+    let (code, _, report) = s.run("p.yaml", &["--time-limit", "0.5"]);
+    assert_eq!(code, 1);
+    let slow = report.tasks().into_iter().find(|t| t["stage"] == "slow").unwrap().clone();
+    assert!(slow["error"].as_str().unwrap().starts_with("timed out"), "{slow}");
+    let out = s.repro(&["run", "p.yaml", "--time-limit", "0"]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    // A wrong `time_limit` is a located error.
+    s.write("p.yaml", &pipeline("    time_limit: -3\n"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 2);
+    assert!(err.contains("p.yaml:4:") && err.contains("`time_limit` must be a positive number of seconds"), "{err}");
+}
+
+#[test]
+fn a_boundary_element_point_that_would_run_for_minutes_stops_at_its_time_limit() {
+    // lambda = 1e6 runs for about 256 s; its Newton iterations are checkpoints.
+    let s = Scratch::new("time-limit-bem");
+    s.write(
+        "p.yaml",
+        "stages:\n  - name: hard\n    kind: bem.sweep\n    time_limit: 2\n    params: {lambda: 1000000, W: 1, k: 0.1, V0: 1}\n",
+    );
+    let t0 = Instant::now();
+    let (code, _, report) = s.run("p.yaml", &[]);
+    assert!(t0.elapsed() < Duration::from_secs(30), "{:?}", t0.elapsed());
+    assert_eq!(code, 1);
+    let hard = report.tasks()[0].clone();
+    assert!(hard["error"].as_str().unwrap().starts_with("timed out: past its time limit of 2 s"), "{hard}");
+}

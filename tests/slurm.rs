@@ -207,6 +207,7 @@ fn the_worker_recomputes_a_task_from_its_spec_and_rejects_a_tampered_one() {
         version: entry.version,
         params: entry.params.clone(),
         inputs: vec![("sweep".into(), inputs)],
+        time_limit_s: 600.0,
     };
     std::fs::create_dir_all(spec_path(&cache, &key).parent().unwrap()).unwrap();
     std::fs::create_dir_all(failure_path(&cache, &key).parent().unwrap()).unwrap();

@@ -684,6 +684,7 @@ fn newton_limited(
     let mut ev = sys.eval(&h, delta);
     let mut iterations = 0;
     while ev.norm > tol && iterations < max_iter && ev.norm.is_finite() {
+        crate::numerics::budget::checkpoint();
         iterations += 1;
         let rhs: Vec<f64> = ev.r.iter().map(|v| -v).collect();
         // Inexact Newton: solve to a relative accuracy that tightens with the residual.

@@ -92,6 +92,7 @@ fn correct(
     let mut delta = from.delta + ds * t.1;
     let mut iterations = 0;
     loop {
+        crate::numerics::budget::checkpoint();
         let ev = evaluate(model, plate, delta, &u, &from.contact.stick)?;
         let du_k: Vec<f64> = u.iter().zip(&from.u).map(|(a, b)| a - b).collect();
         let g = dot(t.0, t.1, &du_k, delta - from.delta) - ds;

@@ -177,6 +177,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     let mut since_best = 0;
     let mut iterations = 0;
     while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
+        crate::numerics::budget::checkpoint();
         iterations += 1;
         if best.as_ref().is_none_or(|(_, b)| cur.norm < b.norm) {
             best = Some((u.clone(), cur.clone()));

@@ -1,6 +1,7 @@
 //! Small numerical building blocks shared by the physics modules.
 
 pub mod banded;
+pub mod budget;
 pub mod fit;
 pub mod gmres;
 pub mod quad;

@@ -58,6 +58,7 @@ fn refine<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64, v: f64, e: f64, tol: f64, de
     if e <= tol || depth == 0 {
         return (v, e);
     }
+    super::budget::checkpoint();
     let m = 0.5 * (a + b);
     let (vl, el) = gk15(f, a, m);
     let (vr, er) = gk15(f, m, b);

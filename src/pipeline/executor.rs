@@ -33,6 +33,8 @@ pub struct RunOptions {
     pub lock: LockMode,
     pub progress: bool,
     pub executor: Executor,
+    /// Every task's time limit in seconds (`--time-limit`), over the stages' and kinds' own.
+    pub time_limit_s: Option<f64>,
 }
 
 /// Where tasks are computed.
@@ -58,8 +60,15 @@ impl Default for RunOptions {
             lock: LockMode::Wait,
             progress: true,
             executor: Executor::Local,
+            time_limit_s: None,
         }
     }
+}
+
+/// A task's time limit: the command line's, else its stage's `time_limit`, else its kind's.
+fn time_limit(stage: &Stage, kind: &dyn DynKind, opts: &RunOptions) -> std::time::Duration {
+    let s = opts.time_limit_s.or(stage.time_limit_s).unwrap_or_else(|| kind.time_limit_s());
+    std::time::Duration::try_from_secs_f64(s).unwrap_or(std::time::Duration::MAX)
 }
 
 /// A command-line mistake (unknown target, ...): reported as invalid input.
@@ -454,7 +463,16 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                             .map(|j| {
                                 let kind = registry.get(&p.stages[j.stage].kind).unwrap();
                                 let started = start.elapsed().as_secs_f64();
-                                let (out, dt) = compute_task(kind, &j.key, &j.params, &input_tables[&j.stage], &cache);
+                                let limit = time_limit(&p.stages[j.stage], kind, opts);
+                                let (out, dt) = compute_task(
+                                    registry,
+                                    kind,
+                                    &j.key,
+                                    &j.params,
+                                    &input_tables[&j.stage],
+                                    &cache,
+                                    Some(limit),
+                                );
                                 bars[&j.stage].inc(1);
                                 (out, dt, Some(started))
                             })
@@ -484,6 +502,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                             _ => unreachable!(),
                                         })
                                         .collect(),
+                                    time_limit_s: time_limit(stage, registry.get(&stage.kind).unwrap(), opts)
+                                        .as_secs_f64(),
                                 }
                             })
                             .collect();
@@ -721,18 +741,22 @@ pub struct GcSummary {
 }
 
 /// Computes one task and stores its entry (atomically): the kind's run with panics caught,
-/// its table checked (no NaN or infinity). Returns the output or the error, and the wall
-/// time. Shared by the local executor and the SLURM worker.
+/// held to `limit` (`Registry::run_limited`), its table checked (no NaN or infinity).
+/// Returns the output or the error, and the wall time. Shared by the local executor and the
+/// SLURM worker.
 pub fn compute_task(
+    registry: &Registry,
     kind: &dyn DynKind,
     key: &Hash,
     params: &serde_json::Value,
     inputs: &Inputs,
     cache: &Cache,
+    limit: Option<std::time::Duration>,
 ) -> (Result<Output, String>, f64) {
     super::fault::point("task.start");
     let t0 = Instant::now();
-    let res = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| kind.run(params, inputs)));
+    let res =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| registry.run_limited(kind, params, inputs, limit)));
     let out = match res {
         Ok(Ok(out)) => out.table.check().map(|_| out).map_err(|e| format!("invalid output: {e:#}")),
         Ok(Err(e)) => Err(format!("{e:#}")),

@@ -11,6 +11,7 @@ use schemars::JsonSchema;
 use serde::{de::DeserializeOwned, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
+use std::time::Duration;
 
 /// The assembled tables of the stages a task needs, by stage name.
 pub struct Inputs<'a> {
@@ -88,6 +89,11 @@ pub trait Kind: Send + Sync + 'static {
     const DOC: &'static str;
     /// Parameters that may be given as a sweep (list, logspace, linspace).
     const SWEEPABLE: &'static [&'static str] = &[];
+    /// The wall time after which a task of this kind is stopped and recorded as timed out,
+    /// in seconds: far above what a point of the thesis takes (its longest, about 30 s),
+    /// far below a runaway's hours. A stage's `time_limit` and `repro run --time-limit`
+    /// override it.
+    const TIME_LIMIT_S: f64 = 600.0;
     /// The columns of this kind's table, in order (some only for some parameters, e.g. a
     /// material's), for `repro kinds KIND`; a test checks that every emitted column is here.
     const COLUMNS: &'static [&'static str] = &[];
@@ -118,6 +124,7 @@ pub trait DynKind: Send + Sync {
     fn doc(&self) -> &'static str;
     fn sweepable(&self) -> &'static [&'static str];
     fn columns(&self) -> &'static [&'static str];
+    fn time_limit_s(&self) -> f64;
     fn params_schema(&self) -> Value;
     /// Parses and validates one point; returns its canonical parameters (defaults filled in)
     /// and the stages it references.
@@ -277,6 +284,9 @@ impl<K: Kind> DynKind for Typed<K> {
     fn columns(&self) -> &'static [&'static str] {
         K::COLUMNS
     }
+    fn time_limit_s(&self) -> f64 {
+        K::TIME_LIMIT_S
+    }
     fn params_schema(&self) -> Value {
         self.schema.clone()
     }
@@ -302,11 +312,22 @@ impl<K: Kind> DynKind for Typed<K> {
     }
 }
 
+/// Runs a task's computation within a time limit; `None` if the limit passed first. The
+/// code that binds kinds to their solvers installs it (`Registry::set_limiter`): it knows
+/// how they are interrupted.
+pub type Limiter = fn(Duration, &mut dyn FnMut() -> Result<Output>) -> Option<Result<Output>>;
+
+/// A task stopped at its time limit (seconds).
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("timed out: past its time limit of {0} s (a stage's `time_limit`, or `repro run --time-limit`)")]
+pub struct TimeLimitExceeded(pub f64);
+
 /// The stage kinds a pipeline may use, by name, and what their output columns mean.
 #[derive(Default)]
 pub struct Registry {
     kinds: BTreeMap<&'static str, Box<dyn DynKind>>,
     columns: BTreeMap<String, ColumnDoc>,
+    limiter: Option<Limiter>,
 }
 
 /// The unit (or normalisation) and meaning of an output column, written beside every
@@ -347,6 +368,28 @@ impl Registry {
             self.columns.entry(name).or_insert(doc);
         }
         self
+    }
+
+    /// Installs the way tasks are held to their time limit (without one, they run to the end).
+    pub fn set_limiter(&mut self, limiter: Limiter) -> &mut Self {
+        self.limiter = Some(limiter);
+        self
+    }
+
+    /// Runs one point of `kind`, stopped at `limit` (if the registry has a limiter) with
+    /// [`TimeLimitExceeded`].
+    pub fn run_limited(
+        &self,
+        kind: &dyn DynKind,
+        params: &Value,
+        inputs: &Inputs,
+        limit: Option<Duration>,
+    ) -> Result<Output> {
+        match (self.limiter, limit) {
+            (Some(limiter), Some(limit)) => limiter(limit, &mut || kind.run(params, inputs))
+                .unwrap_or_else(|| Err(TimeLimitExceeded(limit.as_secs_f64()).into())),
+            _ => kind.run(params, inputs),
+        }
     }
 
     /// The unit and meaning of an output column, if documented.

@@ -102,7 +102,8 @@ pub fn pipeline_schema(registry: &Registry) -> Value {
             "description": {"type": "string"},
             "params": {"type": "object"},
             "needs": {"type": "array", "items": {"type": "string"}},
-            "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"}
+            "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"},
+            "time_limit": {"type": "number", "exclusiveMinimum": 0, "description": "each task's time limit in seconds (default: the kind's, `repro kinds KIND`); a task past it is recorded as timed out"}
         },
         "required": ["name", "kind"],
         "additionalProperties": false,

@@ -62,6 +62,10 @@ pub struct TaskSpec {
     pub params: Value,
     /// Per input stage (in `needs` order), the keys of its points in order.
     pub inputs: Vec<(String, Vec<Hash>)>,
+    /// The task's time limit in seconds (none: 0); the job array asks SLURM for the largest
+    /// of its tasks' (`--time`, in whole minutes, plus one for the worker's start).
+    #[serde(default)]
+    pub time_limit_s: f64,
 }
 
 /// A worker's failure record.
@@ -131,6 +135,12 @@ fn command_output(cmd: &mut Command) -> Result<String> {
     Ok(String::from_utf8_lossy(&out.stdout).to_string())
 }
 
+/// A task's time limit as sbatch's `--time` in minutes: rounded up, plus one for the
+/// worker's start and the loading of its inputs; None without a limit (or beyond a year).
+pub fn slurm_minutes(time_limit_s: f64) -> Option<u64> {
+    (time_limit_s > 0.0 && time_limit_s < 3.2e7).then(|| (time_limit_s / 60.0).ceil() as u64 + 1)
+}
+
 /// Single-quotes `s` for the shell line that sbatch runs.
 fn shell_quote(s: &str) -> String {
     format!("'{}'", s.replace('\'', r"'\''"))
@@ -182,8 +192,9 @@ impl<'a> Coordinator<'a> {
         Ok(jobs)
     }
 
-    /// Submits `keys` as one job array; returns the job id.
-    fn submit(&self, keys: &[&Hash], attempt: u32) -> Result<String> {
+    /// Submits `keys` as one job array, each task within `time_limit_s` (0: SLURM's
+    /// default); returns the job id.
+    fn submit(&self, keys: &[&Hash], attempt: u32, time_limit_s: f64) -> Result<String> {
         let joined: String = keys.iter().map(|k| format!("{k}\n")).collect();
         let list_name = format!("{}-{attempt}.txt", &blake3::hash(joined.as_bytes()).to_hex()[..16]);
         let list = dir(self.cache, "lists").join(&list_name);
@@ -206,6 +217,9 @@ impl<'a> Coordinator<'a> {
             .arg(format!("--error={}/%A_%a.err", logs.display()));
         if let Some(p) = &self.opts.partition {
             cmd.args(["--partition", p]);
+        }
+        if let Some(minutes) = slurm_minutes(time_limit_s) {
+            cmd.arg(format!("--time={minutes}"));
         }
         cmd.arg(format!("--wrap={wrap}"));
         // sbatch can be refused while the controller is busy: a few tries with back-off.
@@ -349,7 +363,8 @@ impl<'a> Coordinator<'a> {
             let _ = std::fs::remove_file(failure_path(self.cache, &tasks[i].key));
         }
         let keys: Vec<&Hash> = idx.iter().map(|&i| &tasks[i].key).collect();
-        match self.submit(&keys, attempt) {
+        let limit = idx.iter().map(|&i| tasks[i].time_limit_s).fold(0.0, f64::max);
+        match self.submit(&keys, attempt, limit) {
             Ok(job) => {
                 for (index, &i) in idx.iter().enumerate() {
                     place.insert(i, Placement { job: job.clone(), index, attempt, adopted: false });
@@ -440,6 +455,21 @@ fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Resul
         ));
     }
     let inputs = super::kind::Inputs { tables: tables.iter().map(|(n, t)| (n.clone(), t)).collect() };
-    let (out, wall) = super::executor::compute_task(kind, &spec.key, &spec.params, &inputs, cache);
+    let limit =
+        (spec.time_limit_s > 0.0).then(|| Duration::try_from_secs_f64(spec.time_limit_s).unwrap_or(Duration::MAX));
+    let (out, wall) = super::executor::compute_task(registry, kind, &spec.key, &spec.params, &inputs, cache, limit);
     out.map(|_| wall)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_time_limit_becomes_whole_minutes_with_one_to_spare() {
+        // sbatch's --time in minutes: 600 s -> 11, 61 s -> 3, 1 s -> 2; none without a limit.
+        assert_eq!(super::slurm_minutes(600.0), Some(11));
+        assert_eq!(super::slurm_minutes(61.0), Some(3));
+        assert_eq!(super::slurm_minutes(1.0), Some(2));
+        assert_eq!(super::slurm_minutes(0.0), None);
+        assert_eq!(super::slurm_minutes(f64::INFINITY), None);
+    }
 }

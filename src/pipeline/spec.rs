@@ -109,6 +109,8 @@ pub struct Stage {
     /// Its table is written to the tables folder (`publish: false`: an intermediate, kept in
     /// the cache for the stages that need it).
     pub publish: bool,
+    /// Its tasks' time limit in seconds (`time_limit`; default: the kind's).
+    pub time_limit_s: Option<f64>,
     pub location: Location,
 }
 
@@ -426,7 +428,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         cx.err(cx.loc(node), "a stage must be a mapping with `name`, `kind`, `params` and `needs`");
         return None;
     };
-    check_keys(cx, map, &["name", "kind", "params", "needs", "description", "publish"], "a stage");
+    check_keys(cx, map, &["name", "kind", "params", "needs", "description", "publish", "time_limit"], "a stage");
     let name = match map.get_node("name") {
         Some(Node::Scalar(s)) if is_valid_name(s.as_str()) => s.as_str().to_string(),
         Some(n) => {
@@ -458,6 +460,16 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             cx.err(cx.loc(n), format!("stage `{name}`: `publish` must be true or false"));
             true
         }
+    };
+    let time_limit_s = match map.get_node("time_limit") {
+        None => None,
+        Some(n) => match to_json(n).as_f64() {
+            Some(s) if s > 0.0 => Some(s),
+            _ => {
+                cx.err(cx.loc(n), format!("stage `{name}`: `time_limit` must be a positive number of seconds"));
+                None
+            }
+        },
     };
     let mut needs = Vec::new();
     let mut need_locations = Vec::new();
@@ -538,6 +550,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             adaptive,
             ranges_from,
             publish,
+            time_limit_s,
             location: mapping_location(cx.file, map),
         },
         need_locations,

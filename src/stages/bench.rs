@@ -84,6 +84,7 @@ pub struct Pareto;
 impl Kind for Pareto {
     const NAME: &'static str = "bench.pareto";
     const VERSION: u32 = 3;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Run time against error: per solver configuration, max relative error vs a reference, wall time, Pareto front";
     const COLUMNS: &'static [&'static str] = &[
@@ -226,6 +227,7 @@ pub struct Summary;
 impl Kind for Summary {
     const NAME: &'static str = "bench.summary";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Summary of a stress grid: per stage points, converged, max iterations, worst residual";
     const COLUMNS: &'static [&'static str] =
         &["stage", "points", "converged", "not_converged", "max_iterations", "worst_residual"];

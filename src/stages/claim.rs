@@ -297,6 +297,7 @@ pub struct Claim;
 impl Kind for Claim {
     const NAME: &'static str = "claim";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "A statement of the thesis checked against a published table: the quantity, the thesis' value, the verdict";
     const COLUMNS: &'static [&'static str] = &[
@@ -396,6 +397,7 @@ pub struct Claims;
 impl Kind for Claims {
     const NAME: &'static str = "claims";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "The verdicts of claim stages in one table, and the run's verdict line";
     const COLUMNS: &'static [&'static str] = &["id", "verdict", "expected"];
     type Params = ClaimsParams;

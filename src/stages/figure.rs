@@ -716,6 +716,7 @@ pub struct Figure;
 impl Kind for Figure {
     const NAME: &'static str = "figure";
     const VERSION: u32 = 13;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     const COLUMNS: &'static [&'static str] =
         &["series", "x", "y", "x_name", "y_name", "group_by", "group", "group_value", "y_error"];

@@ -32,6 +32,7 @@ pub struct FitPowerLaw;
 impl Kind for FitPowerLaw {
     const NAME: &'static str = "fit.powerlaw";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Power law y = c x^s fitted over an x range (log-log least squares), with standard errors";
     const COLUMNS: &'static [&'static str] = &[

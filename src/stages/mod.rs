@@ -40,6 +40,8 @@ pub fn documented_columns() -> Vec<(String, ColumnDoc)> {
 pub fn registry() -> Registry {
     let mut r = Registry::new();
     r.document_columns(documented_columns());
+    // Tasks stop at the solvers' checkpoints once their time limit has passed.
+    r.set_limiter(|limit, f| crate::numerics::budget::within(limit, f).ok());
     theory::register(&mut r);
     bem::register(&mut r);
     fem::register(&mut r);

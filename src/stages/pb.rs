@@ -65,6 +65,7 @@ pub struct PbCalibrate;
 impl Kind for PbCalibrate {
     const NAME: &'static str = "pb.calibrate";
     const VERSION: u32 = 2;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Persson-Brener prefactor alpha (Eq. 5.18) fitted to F_T*(V0) curves: linear (Eq. 5.20) and square-root (Eq. 5.21) regimes";
     const COLUMNS: &'static [&'static str] = &[

@@ -60,6 +60,7 @@ pub struct MaugisDugdale;
 impl Kind for MaugisDugdale {
     const NAME: &'static str = "theory.maugis_dugdale";
     const VERSION: u32 = 2;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Maugis-Dugdale sphere contact: load P_bar and approach vs contact radius A_bar (thesis 2.4.2.4)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
@@ -108,6 +109,7 @@ pub struct MaugisPullOff;
 impl Kind for MaugisPullOff {
     const NAME: &'static str = "theory.maugis_pulloff";
     const VERSION: u32 = 2;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Maugis-Dugdale pull-off load (minimum of P_bar over A_bar); JKR -3/2, DMT -2";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
     const COLUMNS: &'static [&'static str] =
@@ -136,6 +138,7 @@ pub struct LinePullOff;
 impl Kind for LinePullOff {
     const NAME: &'static str = "theory.line_pulloff";
     const VERSION: u32 = 2;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "2D line-contact pull-off W: Maugis-Dugdale, JKR -3(pi/16)^(1/3), rigid Lennard-Jones -2.434 sqrt(lambda)";
     const SWEEPABLE: &'static [&'static str] = &["lambda"];
@@ -177,6 +180,7 @@ pub struct SphereLimits;
 impl Kind for SphereLimits {
     const NAME: &'static str = "theory.sphere_limits";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Hertz (P = A^3), JKR (A^3 - sqrt(6 A^3)) and DMT (A^3 - 2) curves in Maugis' units";
     const COLUMNS: &'static [&'static str] = &["model", "A_bar", "P_bar"];
     type Params = LimitsParams;
@@ -229,6 +233,7 @@ pub struct HertzJkrPressure;
 impl Kind for HertzJkrPressure {
     const NAME: &'static str = "theory.hertz_jkr_pressure";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Hertz and JKR pressure p/p0_Hertz vs r/a_Hertz at the same load (Fig. 2.4)";
     const COLUMNS: &'static [&'static str] = &["model", "P_bar", "r_over_aH", "p_over_p0H"];
     type Params = PressureParams;
@@ -289,6 +294,7 @@ pub struct Persson;
 impl Kind for Persson {
     const NAME: &'static str = "theory.persson";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Persson's adhesionless friction mu* = mu R/a0 vs V0 = v tau/a0 for a standard linear solid (Eqs. 7.1-7.2)";
     const SWEEPABLE: &'static [&'static str] = &["inv_k", "V0"];
@@ -324,6 +330,7 @@ pub struct PerssonMax;
 impl Kind for PerssonMax {
     const NAME: &'static str = "theory.persson_max";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Maximum over V0 of Persson's adhesionless mu*, and where it occurs";
     const SWEEPABLE: &'static [&'static str] = &["inv_k"];
     const COLUMNS: &'static [&'static str] = &["inv_k", "k", "mu_star_max", "V0_at_max", "error_estimate"];
@@ -362,6 +369,7 @@ pub struct PerssonBrener;
 impl Kind for PerssonBrener {
     const NAME: &'static str = "theory.persson_brener";
     const VERSION: u32 = 3;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
     const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
     const COLUMNS: &'static [&'static str] =
@@ -431,6 +439,7 @@ pub struct LennardJones;
 impl Kind for LennardJones {
     const NAME: &'static str = "theory.lennard_jones";
     const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "The Lennard-Jones 3-9 law of the solvers: energy/dgamma and pressure/sigma0 vs separation h/eps (Fig. 2.3)";
     const COLUMNS: &'static [&'static str] = &["h_over_eps", "energy_over_dgamma", "pressure_over_sigma0"];

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 pub struct SleepParams {
     /// Value echoed into the output table (sweepable).
     pub x: f64,
-    /// Milliseconds to wait before returning.
+    /// Milliseconds to wait before returning (a checkpoint of the time limit every 10 ms).
     #[serde(default)]
     pub ms: u64,
     /// Output `x` rounded to this many decimals (lets tests produce identical outputs
@@ -41,7 +41,13 @@ impl Kind for Sleep {
     }
 
     fn run(p: &SleepParams, inputs: &Inputs) -> Result<Output> {
-        std::thread::sleep(std::time::Duration::from_millis(p.ms));
+        // In slices of at most 10 ms, each a checkpoint of the time limit, as a solver's
+        // iterations are.
+        let end = std::time::Instant::now() + std::time::Duration::from_millis(p.ms);
+        while let Some(left) = end.checked_duration_since(std::time::Instant::now()).filter(|d| !d.is_zero()) {
+            crate::numerics::budget::checkpoint();
+            std::thread::sleep(left.min(std::time::Duration::from_millis(10)));
+        }
         let x = match p.round {
             Some(d) => (p.x * 10f64.powi(d)).round() / 10f64.powi(d),
             None => p.x,
