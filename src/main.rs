@@ -448,7 +448,12 @@ fn main() -> ExitCode {
             for r in &rep.regressions {
                 eprintln!("repro: regression: {r}");
             }
-            Ok(if rep.any_failed() {
+            for e in &rep.errors {
+                eprintln!("repro: error: {e}");
+            }
+            Ok(if !rep.errors.is_empty() {
+                ExitCode::from(EXIT_ERROR)
+            } else if rep.any_failed() {
                 ExitCode::from(EXIT_FAILED_TASKS)
             } else if !rep.regressions.is_empty() {
                 ExitCode::from(EXIT_REGRESSION)

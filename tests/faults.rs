@@ -99,10 +99,22 @@ fn a_full_disk_fails_clearly_and_leaves_the_cache_consistent() {
     s.write("p.yaml", &yaml);
     // Room for the lock and a few entries (about 1 kB each, 4 kB blocks), not for 42.
     let Some(disk) = Mount::tmpfs(&s.path("cache"), "48k") else { return };
-    let (code, err, _) = s.run("p.yaml", &["--jobs", "1"]);
+    let (code, err, r) = s.run("p.yaml", &["--jobs", "1"]);
     assert_ne!(code, 0, "{err}");
     assert!(err.contains("No space left on device"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+    // The run report is written (here outside the full disk), and names every task whose
+    // entry could not be stored, and what else could not be written.
+    let failed: Vec<_> = r.tasks().into_iter().filter(|t| t["status"] == "failed").collect();
+    assert!(!failed.is_empty(), "{err}");
+    for t in &failed {
+        let e = t["error"].as_str().unwrap();
+        assert!(e.contains("writing the cache entry") && e.contains("No space left on device"), "{e}");
+    }
+    assert_eq!(failed.len() + r.count(Some("sweep"), "computed") + r.count(None, "skipped"), r.tasks().len());
+    let errors: Vec<&str> =
+        r.0["errors"].as_array().map_or(Vec::new(), |a| a.iter().filter_map(|e| e.as_str()).collect());
+    assert!(errors.iter().all(|e| e.contains("No space left on device")), "{errors:?}");
     // Room again: the rerun uses what was written, and nothing it finds is torn.
     disk.remount("size=4m");
     let (code, err, r) = s.run("p.yaml", &[]);

@@ -670,12 +670,19 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     };
     if !opts.dry_run {
         remove_stale_temporaries(&[&opts.figures_dir, &opts.tables_dir]);
+        // A manifest or a published file that cannot be written (a full disk) is recorded,
+        // and the rest still written: the other stages' outputs and the report.
         for (si, m) in &manifests {
-            cache.write_manifest(&pid, &p.stages[*si].name, m)?;
+            if let Err(e) = cache.write_manifest(&pid, &p.stages[*si].name, m) {
+                report.errors.push(format!("stage `{}`: its manifest: {e:#}", p.stages[*si].name));
+            }
         }
         for &si in &order {
             if let Some(StageState::Done { points, times, .. }) = states.get(&si).filter(|_| p.stages[si].publish) {
-                report.published.extend(publish_stage(p, &p.stages[si], registry, points, times, opts)?);
+                match publish_stage(p, &p.stages[si], registry, points, times, opts) {
+                    Ok(written) => report.published.extend(written),
+                    Err(e) => report.errors.push(format!("stage `{}`: publishing: {e:#}", p.stages[si].name)),
+                }
             }
         }
     }
@@ -696,8 +703,12 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         let bytes = serde_json::to_vec_pretty(&report)?;
         let runs = cache.root.join("runs");
         let name = format!("run-{:013}-{}.json", report.started_unix_ms, std::process::id());
-        super::cache::write_atomic(&runs.join(name), &bytes, &cache.tmp_dir())?;
-        super::cache::write_atomic(&runs.join("last.json"), &bytes, &cache.tmp_dir())?;
+        for path in [runs.join(name), runs.join("last.json")] {
+            if let Err(e) = super::cache::write_atomic(&path, &bytes, &cache.tmp_dir()) {
+                report.errors.push(format!("the run history: {e:#}"));
+                break;
+            }
+        }
     }
     Ok(report)
 }

@@ -91,6 +91,11 @@ pub struct RunReport {
     pub notes: Vec<String>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub regressions: Vec<String>,
+    /// What the run could not write after its tasks (a stage's manifest, a published file,
+    /// the run history: a full disk, a read-only folder), each with its stage and file; the
+    /// rest was written.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub errors: Vec<String>,
 }
 
 impl RunReport {
