@@ -143,13 +143,17 @@ struct Typed<K: Kind> {
     kind: std::marker::PhantomData<K>,
 }
 
+/// The definition a `$ref` of `schema` points to in `root`'s `$defs`, if it has one.
+fn referenced<'a>(root: &'a Value, schema: &Value) -> Option<&'a Value> {
+    let name = schema.get("$ref")?.as_str()?.strip_prefix("#/$defs/")?;
+    root.get("$defs")?.get(name)
+}
+
 /// The errors of `value` (at `path`) against the numeric bounds of `schema` and of the
 /// schemas of its fields and items; `root` resolves `$ref`s.
 pub fn bound_errors(root: &Value, schema: &Value, value: &Value, path: &str, errors: &mut Vec<FieldError>) {
-    if let Some(target) = schema.get("$ref").and_then(Value::as_str) {
-        if let Some(def) = target.strip_prefix("#/$defs/").and_then(|name| root.get("$defs")?.get(name)) {
-            bound_errors(root, def, value, path, errors);
-        }
+    if let Some(def) = referenced(root, schema) {
+        bound_errors(root, def, value, path, errors);
     }
     for key in ["anyOf", "oneOf", "allOf"] {
         for branch in schema.get(key).and_then(Value::as_array).into_iter().flatten() {
@@ -159,7 +163,7 @@ pub fn bound_errors(root: &Value, schema: &Value, value: &Value, path: &str, err
     let join = |field: &str| if path.is_empty() { field.to_string() } else { format!("{path}.{field}") };
     match value {
         Value::Number(n) => {
-            if let Some(message) = n.as_f64().and_then(|x| out_of_bounds(schema, x, n.is_f64())) {
+            if let Some(message) = n.as_f64().and_then(|x| out_of_bounds(schema, x)) {
                 errors.push(FieldError::new(path, message));
             }
         }
@@ -196,66 +200,71 @@ fn show(x: f64) -> String {
     }
 }
 
-/// The bounds of a numeric schema: (lower, exclusive), (upper, exclusive).
-type Bounds = ((Option<f64>, bool), (Option<f64>, bool));
-
-fn bounds_of(schema: &Value) -> Bounds {
-    let get = |k: &str| schema.get(k).and_then(Value::as_f64);
-    let lo = match (get("minimum"), get("exclusiveMinimum")) {
-        (_, Some(b)) => (Some(b), true),
-        (b, None) => (b, false),
-    };
-    let hi = match (get("maximum"), get("exclusiveMaximum")) {
-        (_, Some(b)) => (Some(b), true),
-        (b, None) => (b, false),
-    };
-    (lo, hi)
+/// The bounds of a numeric schema: (lower, exclusive), (upper, exclusive), and whether it
+/// is an integer's.
+struct Bounds {
+    lo: Option<(f64, bool)>,
+    hi: Option<(f64, bool)>,
+    integer: bool,
 }
 
-/// The valid range of a numeric schema as `repro kinds` shows it: "> 0", ">= 0",
-/// "(0, 1)", "16..=32000"; empty without bounds. `$ref`s and the branches of an optional
-/// field are followed (`root` resolves them).
-pub fn range_text(root: &Value, schema: &Value) -> String {
-    if let Some(def) =
-        schema.get("$ref").and_then(Value::as_str).and_then(|t| root.get("$defs")?.get(t.strip_prefix("#/$defs/")?))
-    {
-        return range_text(root, def);
+impl Bounds {
+    fn of(schema: &Value) -> Bounds {
+        let get = |k: &str| schema.get(k).and_then(Value::as_f64);
+        let side =
+            |inclusive: &str, exclusive: &str| get(exclusive).map(|b| (b, true)).or(get(inclusive).map(|b| (b, false)));
+        let integer = schema
+            .get("type")
+            .is_some_and(|t| t == "integer" || t.as_array().is_some_and(|a| a.iter().any(|x| x == "integer")));
+        Bounds { lo: side("minimum", "exclusiveMinimum"), hi: side("maximum", "exclusiveMaximum"), integer }
     }
-    let ((lo, lo_open), (hi, hi_open)) = bounds_of(schema);
-    let integer = schema
-        .get("type")
-        .is_some_and(|t| t == "integer" || t.as_array().is_some_and(|a| a.iter().any(|x| x == "integer")));
-    match (lo, hi) {
-        (Some(a), None) => format!("{} {}", if lo_open { ">" } else { ">=" }, show(a)),
-        (None, Some(b)) => format!("{} {}", if hi_open { "<" } else { "<=" }, show(b)),
-        (Some(a), Some(b)) if integer && !lo_open && !hi_open => format!("{}..={}", show(a), show(b)),
-        (Some(a), Some(b)) => {
-            format!("{}{}, {}{}", if lo_open { "(" } else { "[" }, show(a), show(b), if hi_open { ")" } else { "]" })
+
+    fn contains(&self, x: f64) -> bool {
+        self.lo.is_none_or(|(b, open)| if open { x > b } else { x >= b })
+            && self.hi.is_none_or(|(b, open)| if open { x < b } else { x <= b })
+    }
+
+    /// "> 0", ">= 0", "(0, 1)", "[0, 1)", "16..=32000"; empty without bounds.
+    fn text(&self) -> String {
+        match (self.lo, self.hi) {
+            (Some((a, open)), None) => format!("{} {}", if open { ">" } else { ">=" }, show(a)),
+            (None, Some((b, open))) => format!("{} {}", if open { "<" } else { "<=" }, show(b)),
+            (Some((a, false)), Some((b, false))) if self.integer => format!("{}..={}", show(a), show(b)),
+            (Some((a, lo_open)), Some((b, hi_open))) => {
+                format!(
+                    "{}{}, {}{}",
+                    if lo_open { "(" } else { "[" },
+                    show(a),
+                    show(b),
+                    if hi_open { ")" } else { "]" }
+                )
+            }
+            (None, None) => String::new(),
         }
-        (None, None) => String::new(),
+    }
+}
+
+/// The valid range of a numeric schema as `repro kinds` shows it (`Bounds::text`); `$ref`s
+/// are followed (`root` resolves them).
+pub fn range_text(root: &Value, schema: &Value) -> String {
+    match referenced(root, schema) {
+        Some(def) => range_text(root, def),
+        None => Bounds::of(schema).text(),
     }
 }
 
 /// What is wrong with `x` against the bounds of `schema`, if anything, in the words of the
-/// errors: "must be positive", "must lie in 4..=20000", "must lie in (-1, 0.5)".
-fn out_of_bounds(schema: &Value, x: f64, real: bool) -> Option<String> {
-    let ((lo, lo_open), (hi, hi_open)) = bounds_of(schema);
-    let above = lo.is_none_or(|b| if lo_open { x > b } else { x >= b });
-    let below = hi.is_none_or(|b| if hi_open { x < b } else { x <= b });
-    if above && below {
+/// errors: "must be positive", "must be zero or positive", "must lie in (-1, 0.5)".
+fn out_of_bounds(schema: &Value, x: f64) -> Option<String> {
+    let bounds = Bounds::of(schema);
+    if bounds.contains(x) {
         return None;
     }
-    let wanted = match (lo, hi) {
-        (Some(0.0), None) if lo_open => "must be positive".to_string(),
-        (Some(0.0), None) => "must be zero or positive".to_string(),
-        (Some(a), None) => format!("must be {} {}", if lo_open { "greater than" } else { "at least" }, show(a)),
-        (None, Some(b)) => format!("must be {} {}", if hi_open { "less than" } else { "at most" }, show(b)),
-        (Some(a), Some(b)) if !real && !lo_open && !hi_open => format!("must lie in {}..={}", show(a), show(b)),
-        (Some(a), Some(b)) => {
-            let (open, close) = (if lo_open { "(" } else { "[" }, if hi_open { ")" } else { "]" });
-            format!("must lie in {open}{}, {}{close}", show(a), show(b))
-        }
-        (None, None) => return None,
+    let wanted = match (bounds.lo, bounds.hi) {
+        (Some((0.0, true)), None) => "must be positive".to_string(),
+        (Some((0.0, false)), None) => "must be zero or positive".to_string(),
+        (Some(_), Some(_)) => format!("must lie in {}", bounds.text()),
+        _ => format!("must be {}", bounds.text()),
     };
     Some(format!("{wanted}, got {}", show(x)))
 }
