@@ -10,12 +10,12 @@ build:
 figures: build
 	$(CARGO) run --quiet -- run $(PIPELINE)
 
-# The SLURM executor tests need a cluster: ci/slurm/test.sh starts a single-node one (root,
+# The SLURM executor tests need a cluster: .ci/slurm/test.sh starts a single-node one (root,
 # Debian's slurm-wlm and munge; .ci/run installs them and sets REPRO_REQUIRE_SLURM=1).
 test:
 	env -u REPRO_REQUIRE_SLURM $(CARGO) test
 	@if [ "$$(id -u)" = 0 ] && command -v slurmctld >/dev/null 2>&1 && command -v munged >/dev/null 2>&1; then \
-		CARGO=$(CARGO) ci/slurm/test.sh; \
+		CARGO=$(CARGO) .ci/slurm/test.sh; \
 	elif [ -n "$$REPRO_REQUIRE_SLURM" ]; then \
 		echo "make test: REPRO_REQUIRE_SLURM is set but SLURM (slurm-wlm, munge) is not installed or this is not root" >&2; exit 1; \
 	else \
@@ -42,7 +42,7 @@ report: build
 report-check: build
 	$(CARGO) run --quiet -- report $(PIPELINE) --cache $(ARTIFACTS)/cache --figures $(ARTIFACTS)/figures \
 		--tables $(ARTIFACTS)/tables --out $(ARTIFACTS)/report/index.html
-	mkdir -p target/report-check && cp ci/report_check.mjs target/report-check/
+	mkdir -p target/report-check && cp .ci/report_check.mjs target/report-check/
 	cd target/report-check && { [ -d node_modules/playwright-core ] || npm install --silent --no-save --no-package-lock playwright-core@1; }
 	node target/report-check/report_check.mjs $(ARTIFACTS)/report/index.html $(PIPELINE) $(ARTIFACTS)/report/screenshot.png
 
@@ -56,9 +56,9 @@ schema: build
 	$(CARGO) run --quiet -- schema > pipelines/schema.json
 
 # pipelines/schema.json and the tool agree (Python's jsonschema and PyYAML): every pipeline
-# of pipelines/ passes both, every file of ci/schema/wrong/ fails both.
+# of pipelines/ passes both, every file of .ci/schema/wrong/ fails both.
 schema-check: build
-	python3 ci/schema/check.py target/debug/repro
+	python3 .ci/schema/check.py target/debug/repro
 
 lint:
 	$(CARGO) fmt --check

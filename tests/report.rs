@@ -1,7 +1,7 @@
 //! `repro report`: the HTML page lists every figure of the pipeline (inlined SVG) and every
 //! claim with its verdict, the last run's timeline, and provenance, and makes no request
 //! (a Content-Security-Policy of `default-src 'none'`, no external reference). The browser
-//! check of the same page is `make report-check` (ci/report_check.mjs), run by CI.
+//! check of the same page is `make report-check` (.ci/report_check.mjs), run by CI.
 
 mod common;
 use common::Scratch;

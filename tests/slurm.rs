@@ -1,5 +1,5 @@
-//! The SLURM executor against a real single-node cluster (`ci/slurm/cluster.sh`, started
-//! by `ci/slurm/test.sh`, which `make test` runs when SLURM is installed and `.ci/run`
+//! The SLURM executor against a real single-node cluster (`.ci/slurm/cluster.sh`, started
+//! by `.ci/slurm/test.sh`, which `make test` runs when SLURM is installed and `.ci/run`
 //! always). Without `SLURM_CONF` these tests say so and pass, unless
 //! `REPRO_REQUIRE_SLURM` is set (as in CI), when they fail.
 
@@ -12,7 +12,7 @@ fn cluster() -> bool {
         return true;
     }
     if std::env::var_os("REPRO_REQUIRE_SLURM").is_some() {
-        panic!("REPRO_REQUIRE_SLURM is set but SLURM_CONF is not: start a cluster with ci/slurm/cluster.sh");
+        panic!("REPRO_REQUIRE_SLURM is set but SLURM_CONF is not: start a cluster with .ci/slurm/cluster.sh");
     }
     eprintln!("skipped: no SLURM cluster (SLURM_CONF unset); `make test` starts one when SLURM is installed");
     false

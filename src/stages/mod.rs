@@ -5,13 +5,10 @@ pub mod bem;
 pub mod bench;
 pub mod claim;
 pub mod fem;
-pub mod fem_map;
 pub mod figure;
 pub mod fit;
 pub mod material;
 pub mod pb;
-pub mod pulloff;
-pub mod shell_form;
 pub mod theory;
 pub mod util;
 
@@ -45,10 +42,8 @@ pub fn registry() -> Registry {
     theory::register(&mut r);
     bem::register(&mut r);
     fem::register(&mut r);
-    fem_map::register(&mut r);
     bench::register(&mut r);
     claim::register(&mut r);
-    pulloff::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
     pb::register(&mut r);

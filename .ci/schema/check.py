@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The pipeline schema and the tool agree: every pipeline file in pipelines/ passes both
 JSON Schema validation (pipelines/schema.json, draft 2020-12, Python's jsonschema) and
-`repro run --dry-run`; every file in ci/schema/wrong/ fails both, and the schema's errors
+`repro run --dry-run`; every file in .ci/schema/wrong/ fails both, and the schema's errors
 name the stage's own kind only (one branch per kind, selected by `kind`).
 
 Usage: check.py REPRO_BINARY (run from the repository root; `make schema-check`)."""
@@ -61,7 +61,7 @@ def main():
             print(f"    {list(e.absolute_path)}: {e.message}")
         if errors or not ok:
             failures.append(f"{path}: a pipeline of the repository must pass both ({last})")
-    for path in sorted(glob.glob("ci/schema/wrong/*.yaml")):
+    for path in sorted(glob.glob(".ci/schema/wrong/*.yaml")):
         errors = schema_errors(validator, path)
         ok, last = tool_accepts(repro, path)
         with open(path, encoding="utf-8") as f:

@@ -3,9 +3,10 @@
 //! under prescribed displacement: the path from the reference state, and the inverted
 //! state at the same plate displacements where it exists).
 
-use super::fem_map::{MeshStudy, Outcome};
-use super::shell_form::{self, default_lift_threshold, Imperfection, MaterialLaw, Stability};
-use super::{check, finite};
+pub mod buckling;
+pub mod gamma_c;
+pub mod shell;
+
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Jump, Leg};
 use crate::fem::indent::Step;
@@ -13,9 +14,12 @@ use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
+use crate::stages::{check, finite};
 use anyhow::Result;
+use buckling::{MeshStudy, Outcome};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use shell::{default_lift_threshold, Imperfection, MaterialLaw, Stability};
 
 fn default_e() -> f64 {
     1.3
@@ -165,7 +169,7 @@ pub struct IndentParams {
     /// Equal load steps to delta_max (and back).
     #[schemars(range(min = 1, max = check::MAX_STEPS))]
     pub steps: usize,
-    /// Stability test: `lift_threshold` (default) or `tangent` (`shell_form::Stability`).
+    /// Stability test: `lift_threshold` (default) or `tangent` (`shell::Stability`).
     #[serde(default, skip_serializing_if = "Stability::is_default")]
     pub stability: Stability,
     /// With `stability: lift_threshold`: contact nodes pressed above this fraction of the
@@ -191,7 +195,7 @@ pub struct IndentParams {
     /// What holds touching points of an adhesive contact in the stability test: `free`
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
     #[serde(default)]
-    pub hold: super::fem_map::Hold,
+    pub hold: buckling::Hold,
     /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
     /// second cycle on twice the meridian elements, run alongside (`Cycles`; default false:
     /// the declared error of the default mesh for forces, none for W or other meshes).
@@ -226,7 +230,7 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = shell_form::model(sh.mesh_on(n), sh.E, sh.nu, base, sh.material, &sh.imperfection);
+        let model = shell::model(sh.mesh_on(n), sh.E, sh.nu, base, sh.material, &sh.imperfection);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
@@ -318,7 +322,7 @@ impl Cycles {
     /// The mesh's share of the error of a state's plate force (units of the force). With a
     /// study: twice the difference from the finer cycle's force at the same delta, leg and
     /// branch (`branch_force`, within a load step of a branch's end; Richardson's bound at
-    /// first order, as `fem_map::MeshStudy`), or |F| where the finer cycle has no such state
+    /// first order, as `buckling::MeshStudy`), or |F| where the finer cycle has no such state
     /// (it snapped elsewhere: whether this state exists is what the mesh decides). Without:
     /// the default mesh's declared error, or 0.
     fn force_error(&self, row: &Row) -> f64 {
@@ -331,7 +335,7 @@ impl Cycles {
     }
 
     /// The mesh's shares of the errors of F_buckling and W (units of force and energy),
-    /// with whether the two meshes agree on the cycle's events (`fem_map::MeshStudy`); the
+    /// with whether the two meshes agree on the cycle's events (`buckling::MeshStudy`); the
     /// declared error of F_buckling on the default mesh and none for W without a study.
     fn event_errors(&self, w: f64, finer_w: impl Fn(&Cycle) -> f64) -> MeshStudy {
         let c = &self.cycle;
@@ -695,6 +699,8 @@ fn inner_of(m: &ShellMesh, a: usize) -> usize {
 }
 
 pub fn register(r: &mut Registry) {
+    buckling::register(r);
+    gamma_c::register(r);
     r.add::<FemMesh>().add::<FemIndent>().add::<FemProfile>();
 }
 

@@ -4,8 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 dir=$(mktemp -d /tmp/repro-slurm.XXXXXX)
-trap 'ci/slurm/cluster.sh stop "$dir"; rm -rf "$dir"' EXIT
-eval "$(ci/slurm/cluster.sh start "$dir")"
+trap '.ci/slurm/cluster.sh stop "$dir"; rm -rf "$dir"' EXIT
+eval "$(.ci/slurm/cluster.sh start "$dir")"
 export SLURM_CONF REPRO_REQUIRE_SLURM=1
 echo "SLURM cluster up ($SLURM_CONF); running tests/slurm.rs"
 ${CARGO:-cargo} test --test slurm -- --test-threads=1

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Starts or stops a single-node SLURM cluster (munged, slurmctld, slurmd) on localhost, all
 # of its state under one directory. Needs root and Debian's slurm-wlm and munge packages.
-#   ci/slurm/cluster.sh start DIR   # prints `export SLURM_CONF=DIR/slurm.conf`
-#   ci/slurm/cluster.sh stop DIR    # stops the daemons it started (by their pid files)
+#   .ci/slurm/cluster.sh start DIR   # prints `export SLURM_CONF=DIR/slurm.conf`
+#   .ci/slurm/cluster.sh stop DIR    # stops the daemons it started (by their pid files)
 set -euo pipefail
 cmd=${1:?usage: cluster.sh start|stop DIR}
 dir=${2:?usage: cluster.sh start|stop DIR}

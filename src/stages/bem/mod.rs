@@ -1,11 +1,14 @@
 //! Stage kinds for the Chapter 4 boundary element model: one sliding point per task
-//! (`bem.sweep`) and the fields of one point (`bem.profile`).
+//! (`bem.sweep`), the fields of one point (`bem.profile`), the maximum over V0
+//! (`bem.maxima`) and, in `pulloff`, the pull-off load (`bem.pulloff`).
 
-use super::finite;
+pub mod pulloff;
+
 use super::material::with_material_fields;
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
+use crate::stages::finite;
 use anyhow::Result;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -397,4 +400,5 @@ impl Kind for BemMaxima {
 
 pub fn register(r: &mut Registry) {
     r.add::<BemSweep>().add::<BemProfile>().add::<BemMaxima>();
+    pulloff::register(r);
 }

@@ -1,0 +1,229 @@
+//! Stage kinds of the buckling-suppression map of Chapter 3 (Section 3.4, Fig. 3.9):
+//! `fem.gamma_c` (the critical adhesion at (h/R, mu) by bracketing, one task per point so
+//! that every point is cached on its own) and `fem.gamma_c_map` (the map: gamma_c(h/R) per
+//! mu closed at the thickness of `fem.buckling_limit`, with Eq. 3.7).
+
+#![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
+
+use super::buckling::MapModel;
+use crate::fem::critical::{bracket, probe, retrying};
+use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::table::{ColumnData, Table};
+use crate::stages::finite;
+use anyhow::{bail, Result};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+fn default_guess() -> f64 {
+    2e-2
+}
+fn default_growth() -> f64 {
+    2.0
+}
+fn default_gamma_max() -> f64 {
+    0.1
+}
+fn default_rel_tol() -> f64 {
+    0.1
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GammaCParams {
+    /// Thickness over radius h/R (sweepable).
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 0.5))]
+    pub h_over_R: f64,
+    /// Coulomb friction coefficient (sweepable; default 0).
+    #[serde(default)]
+    #[schemars(range(min = 0))]
+    pub mu: f64,
+    /// First gamma/(E h) tried (default 2e-2), factor between trials until the answer
+    /// changes (default 2), largest gamma/(E h) tried (default 0.1).
+    #[serde(default = "default_guess")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub guess: f64,
+    #[serde(default = "default_growth")]
+    #[schemars(extend("exclusiveMinimum" = 1.0))]
+    pub growth: f64,
+    #[serde(default = "default_gamma_max")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub gamma_max: f64,
+    /// Bracketing tolerance: the search stops when gamma_hi / gamma_lo - 1 < rel_tol.
+    #[serde(default = "default_rel_tol")]
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 10.0))]
+    pub rel_tol: f64,
+    #[serde(default)]
+    pub model: MapModel,
+}
+
+/// The critical adhesion at one (h/R, mu).
+pub struct FemGammaC;
+
+impl Kind for FemGammaC {
+    const NAME: &'static str = "fem.gamma_c";
+    const VERSION: u32 = 15;
+    const DOC: &'static str =
+        "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
+    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
+    const COLUMNS: &'static [&'static str] = &[
+        "h_over_R",
+        "mu",
+        "gamma_c_over_Eh",
+        "gamma_lo_over_Eh",
+        "gamma_hi_over_Eh",
+        "error_estimate",
+        "rel_tol",
+        "found",
+        "reliable",
+        "buckles_without_adhesion",
+        "gamma_c_N_per_mm",
+        "r_over_R",
+        "eq3_7_over_Eh",
+        "F_buckling_bar",
+        "probes",
+        "unconverged_probes",
+        "wall_time_s",
+    ];
+    type Params = GammaCParams;
+
+    fn validate(p: &GammaCParams) -> Vec<FieldError> {
+        let mut e = Vec::new();
+        p.model.validate(&mut e);
+        e
+    }
+
+    fn run(p: &GammaCParams, _: &Inputs) -> Result<Output> {
+        let t0 = std::time::Instant::now();
+        let m = &p.model;
+        let model = m.shell(p.h_over_R);
+        let scale = m.E * m.h(p.h_over_R);
+        let opt = m.options(false);
+        let b = bracket(
+            retrying(|g| probe(&model, &m.plate(&model, p.h_over_R, g / scale, p.mu), m.E, g, opt)),
+            p.guess * scale,
+            p.growth,
+            p.gamma_max * scale,
+            p.rel_tol,
+        );
+        let mid = b.mid() / scale;
+        let unconverged = b.probes.iter().filter(|q| !q.complete).count();
+        let last = b.last_buckled().and_then(|q| q.buckling);
+        let r = last.map_or(0.0, |j| j.radius_before / m.R);
+        let buckles_at_zero = b.probes.first().is_some_and(|q| q.buckles());
+        Ok(Table::new()
+            .with_f64("h_over_R", vec![p.h_over_R])
+            .with_f64("mu", vec![p.mu])
+            .with_f64("gamma_c_over_Eh", vec![finite(mid)])
+            .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
+            .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])
+            // The half-bracket; not found, gamma_c_over_Eh is only the bound gamma_max, and
+            // the estimate is the value itself (no confidence).
+            .with_f64("error_estimate", vec![finite(if b.found { 0.5 * (b.hi - b.lo) / scale } else { mid })])
+            .with_f64("rel_tol", vec![p.rel_tol])
+            .with("found", ColumnData::Bool(vec![b.found]))
+            .with("reliable", ColumnData::Bool(vec![b.reliable()]))
+            .with("buckles_without_adhesion", ColumnData::Bool(vec![buckles_at_zero]))
+            .with_f64("gamma_c_N_per_mm", vec![finite(mid * scale)])
+            .with_f64("r_over_R", vec![finite(r)])
+            .with_f64("eq3_7_over_Eh", vec![finite(r.powi(4))])
+            .with_f64("F_buckling_bar", vec![finite(last.map_or(0.0, |j| j.force_before * m.f_bar(p.h_over_R)))])
+            .with("probes", ColumnData::I64(vec![b.probes.len() as i64]))
+            .with("unconverged_probes", ColumnData::I64(vec![unconverged as i64]))
+            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
+            .into())
+    }
+}
+
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MapParams {
+    /// The `fem.gamma_c` stage swept over h_over_R and mu.
+    pub gamma_c: String,
+    /// The `fem.buckling_limit` stage swept over mu (optional): each mu's boundary is closed
+    /// at gamma_c = 0 there.
+    #[serde(default)]
+    pub limit: Option<String>,
+}
+
+/// The map of Fig. 3.9: gamma_c/(E h) against h/R for each mu, sorted, closed at the
+/// no-buckling thickness, with the estimate of Eq. 3.7.
+pub struct FemGammaCMap;
+
+impl Kind for FemGammaCMap {
+    const NAME: &'static str = "fem.gamma_c_map";
+    const VERSION: u32 = 4;
+    const DOC: &'static str =
+        "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
+    const COLUMNS: &'static [&'static str] = &[
+        "mu",
+        "h_over_R",
+        "gamma_c_over_Eh",
+        "gamma_lo_over_Eh",
+        "gamma_hi_over_Eh",
+        "error_estimate",
+        "h_error_over_R",
+        "eq3_7_over_Eh",
+        "found",
+        "reliable",
+    ];
+    type Params = MapParams;
+
+    fn referenced_stages(p: &MapParams) -> Vec<(String, String)> {
+        let mut v = vec![("gamma_c".to_string(), p.gamma_c.clone())];
+        if let Some(l) = &p.limit {
+            v.push(("limit".to_string(), l.clone()));
+        }
+        v
+    }
+
+    fn run(p: &MapParams, inputs: &Inputs) -> Result<Output> {
+        let t = inputs.table(&p.gamma_c)?;
+        let col = |name: &str| t.f64_column(name);
+        let (h, mu, g, lo, hi, eq, ok, found, err) = (
+            col("h_over_R")?,
+            col("mu")?,
+            col("gamma_c_over_Eh")?,
+            col("gamma_lo_over_Eh")?,
+            col("gamma_hi_over_Eh")?,
+            col("eq3_7_over_Eh")?,
+            col("reliable")?,
+            col("found")?,
+            col("error_estimate")?,
+        );
+        // The last entry is the error of h/R: none on the gamma_c points (h/R is given), the
+        // bisection's half-bracket on a limit row.
+        let mut rows: Vec<[f64; 10]> =
+            (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i], found[i], err[i], 0.0]).collect();
+        if let Some(l) = &p.limit {
+            let lt = inputs.table(l)?;
+            let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
+            let (llo, lhi) = (lt.f64_column("h_lo_over_R")?, lt.f64_column("h_hi_over_R")?);
+            for i in 0..lmu.len() {
+                if found[i] > 0.5 {
+                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.5 * (lhi[i] - llo[i])]);
+                }
+            }
+        }
+        if rows.is_empty() {
+            bail!("stage `{}` has no points", p.gamma_c);
+        }
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+        let c = |k: usize| rows.iter().map(|r| finite(r[k])).collect::<Vec<f64>>();
+        Ok(Table::new()
+            .with_f64("mu", c(0))
+            .with_f64("h_over_R", c(1))
+            .with_f64("gamma_c_over_Eh", c(2))
+            .with_f64("gamma_lo_over_Eh", c(3))
+            .with_f64("gamma_hi_over_Eh", c(4))
+            .with_f64("error_estimate", c(8))
+            .with_f64("h_error_over_R", c(9))
+            .with_f64("eq3_7_over_Eh", c(5))
+            .with("found", ColumnData::Bool(rows.iter().map(|r| r[7] > 0.5).collect()))
+            .with("reliable", ColumnData::Bool(rows.iter().map(|r| r[6] > 0.5).collect()))
+            .into())
+    }
+}
+
+pub fn register(r: &mut Registry) {
+    r.add::<FemGammaC>().add::<FemGammaCMap>();
+}
