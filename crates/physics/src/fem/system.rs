@@ -16,10 +16,14 @@ use super::element::{energy_of, forces_and_tangent_of, forces_of, Geometry};
 use super::material::{Law, Material};
 use super::mesh::ShellMesh;
 use crate::numerics::banded::{Band, BandCholesky, BandLu};
-use anyhow::{anyhow, Result};
 use faer::sparse::SymbolicSparseColMat;
 use rayon::prelude::*;
 use std::sync::Arc;
+
+/// A tangent stiffness with no LU factorisation (a zero pivot on the free dofs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("band LU: the tangent is singular")]
+pub struct SingularTangent;
 
 /// Where tangent entries (i, j, v) on the full dof numbering go; duplicates are summed.
 /// A `Vec` collects them as triplets (the interface laws' unit tests); a `Stiffness` adds
@@ -409,14 +413,14 @@ impl Model {
     }
 
     /// Solves K du = rhs on the free dofs (du = 0 on the fixed ones).
-    pub fn solve(&self, k: &Stiffness, rhs: &[f64]) -> Result<Vec<f64>> {
+    pub fn solve(&self, k: &Stiffness, rhs: &[f64]) -> Result<Vec<f64>, SingularTangent> {
         Ok(self.solve_many(k, &[rhs])?.remove(0))
     }
 
     /// Solves K x = b for several right-hand sides with one factorisation: Cholesky when K
     /// is symmetric and positive definite (the stable branches without slip), else LU with
     /// partial pivoting.
-    pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>> {
+    pub fn solve_many(&self, k: &Stiffness, rhs: &[&[f64]]) -> Result<Vec<Vec<f64>>, SingularTangent> {
         let mut b = self.to_free(rhs);
         match self.definite(k) {
             Some(llt) => b.iter_mut().for_each(|x| llt.solve_in_place(x)),
@@ -455,9 +459,9 @@ impl Model {
     }
 
     /// The band LU factorisation of `k`.
-    fn factorize(&self, k: &Stiffness) -> Result<BandLu> {
+    fn factorize(&self, k: &Stiffness) -> Result<BandLu, SingularTangent> {
         self.lu_count.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        k.band().lu().ok_or_else(|| anyhow!("band LU: the tangent is singular"))
+        k.band().lu().ok_or(SingularTangent)
     }
 
     /// The Cholesky factorisation of `k` if it is symmetric (to rounding) and positive

@@ -381,7 +381,7 @@ mod tests {
     }
 
     use super::*;
-    use crate::pipeline::table::Table;
+    use crate::table::Table;
 
     #[test]
     fn timings_do_not_count_in_the_output_hash() {

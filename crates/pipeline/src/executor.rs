@@ -658,7 +658,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         pipeline: p.file.clone(),
         overrides: p.overrides.clone(),
         dry_run: opts.dry_run,
-        git_commit: crate::pipeline::report::git_commit(pipeline_dir).map(|(c, modified)| {
+        git_commit: crate::report::git_commit(pipeline_dir).map(|(c, modified)| {
             if modified {
                 format!("{c} (modified)")
             } else {
