@@ -6,7 +6,7 @@
 
 use repro::pipeline::cache::LockMode;
 use repro::pipeline::executor::{run, RunOptions};
-use repro::pipeline::spec;
+use repro::pipeline::parse;
 use std::time::Instant;
 
 fn main() {
@@ -27,7 +27,7 @@ fn main() {
         let file = dir.join("p.yaml");
         std::fs::write(&file, &yaml).unwrap();
         let t = Instant::now();
-        let p = spec::parse(&file.display().to_string(), &yaml, &registry).unwrap();
+        let p = parse::parse(&file.display().to_string(), &yaml, &registry).unwrap();
         let parse = t.elapsed().as_secs_f64();
         let opts = |dry_run| RunOptions {
             cache_dir: dir.join("cache"),

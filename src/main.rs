@@ -1,22 +1,18 @@
 //! The `repro` command line.
 
+mod exit;
+
 use anyhow::Context;
 use clap::{Parser, Subcommand};
-use repro::pipeline::cache::{CacheBusy, LockMode};
+use exit::{CliError, Exit};
+use repro::pipeline::cache::LockMode;
 use repro::pipeline::executor::{self, Executor, RunOptions, UsageError};
+use repro::pipeline::parse;
 use repro::pipeline::slurm::SlurmOptions;
 use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
-use repro::pipeline::{graph, schema};
+use repro::pipeline::{gc, graph, report, schema};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-/// Exit codes.
-const EXIT_FAILED_TASKS: u8 = 1;
-const EXIT_INVALID_INPUT: u8 = 2;
-const EXIT_CACHE_BUSY: u8 = 3;
-const EXIT_ERROR: u8 = 4;
-/// Every task ran, and an expectation that held before no longer holds (a thesis claim).
-const EXIT_REGRESSION: u8 = 5;
 
 const DEFAULT_PIPELINE: &str = "pipelines/thesis.yaml";
 
@@ -263,29 +259,11 @@ fn load_with(
     registry: &repro::pipeline::kind::Registry,
     overrides: &[spec::Override],
 ) -> Result<Pipeline, InvalidPipeline> {
-    let p = spec::load_with(path, registry, overrides)?;
+    let p = parse::load_with(path, registry, overrides)?;
     for w in &p.warnings {
         eprintln!("{w}");
     }
     Ok(p)
-}
-
-fn fail(e: anyhow::Error) -> ExitCode {
-    if let Some(inv) = e.downcast_ref::<InvalidPipeline>() {
-        eprintln!("{inv}");
-        eprintln!("repro: the pipeline is invalid; nothing was run");
-        return ExitCode::from(EXIT_INVALID_INPUT);
-    }
-    if e.downcast_ref::<UsageError>().is_some() {
-        eprintln!("repro: error: {e}");
-        return ExitCode::from(EXIT_INVALID_INPUT);
-    }
-    if e.downcast_ref::<CacheBusy>().is_some() {
-        eprintln!("repro: error: {e}");
-        return ExitCode::from(EXIT_CACHE_BUSY);
-    }
-    eprintln!("repro: error: {e:#}");
-    ExitCode::from(EXIT_ERROR)
 }
 
 /// A kind's parameters from its schema: name, type, default, sweepable, meaning.
@@ -388,7 +366,7 @@ fn main() -> ExitCode {
     faer::set_global_parallelism(faer::Par::Seq);
     let cli = Cli::parse();
     let registry = repro::stages::registry();
-    let result: anyhow::Result<ExitCode> = (|| match cli.command {
+    let result: Result<Exit, CliError> = (|| match cli.command {
         Command::Run {
             pipeline,
             targets,
@@ -452,13 +430,13 @@ fn main() -> ExitCode {
                 eprintln!("repro: error: {e}");
             }
             Ok(if !rep.errors.is_empty() {
-                ExitCode::from(EXIT_ERROR)
+                Exit::Error
             } else if rep.any_failed() {
-                ExitCode::from(EXIT_FAILED_TASKS)
+                Exit::FailedTasks
             } else if !rep.regressions.is_empty() {
-                ExitCode::from(EXIT_REGRESSION)
+                Exit::Regression
             } else {
-                ExitCode::SUCCESS
+                Exit::Success
             })
         }
         Command::Worker { cache, list, index } => {
@@ -470,14 +448,14 @@ fn main() -> ExitCode {
                     .ok_or_else(|| UsageError("worker: give --index or run inside a SLURM array".into()))?,
             };
             let ok = repro::pipeline::slurm::work(&registry, &cache.cache, &list, index)?;
-            Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
+            Ok(if ok { Exit::Success } else { Exit::FailedTasks })
         }
         Command::Status { pipeline, set, cache, explain } => {
             let p = load_with(&pipeline, &registry, &set)?;
             let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
             let rep = executor::run(&p, &registry, &opts)?;
             print!("{}", rep.summary(explain));
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Dag { pipeline, targets, status, cache } => {
             let p = load(&pipeline, &registry)?;
@@ -485,7 +463,7 @@ fn main() -> ExitCode {
             for t in &targets {
                 match p.stages.iter().position(|s| &s.name == t) {
                     Some(i) => idx.push(i),
-                    None => return Err(UsageError(format!("--target {t}: no stage of that name in {}", p.file)).into()),
+                    None => return Err(CliError::usage(format!("--target {t}: no stage of that name in {}", p.file))),
                 }
             }
             let only = (!idx.is_empty()).then(|| graph::with_ancestors(&p, &idx));
@@ -513,7 +491,7 @@ fn main() -> ExitCode {
                 }
             }
             print!("{}", graph::to_dot_with(&p, only.as_ref(), &states));
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Gc { pipelines, cache, dry_run, older_than } => {
             let files = if pipelines.is_empty() {
@@ -525,7 +503,7 @@ fn main() -> ExitCode {
                     })
                     .unwrap_or_default();
                 // The pipelines of the recorded runs (a user's own file outside pipelines/).
-                for (_, r) in executor::run_history(&cache.cache) {
+                for (_, r) in report::run_history(&cache.cache) {
                     let f = PathBuf::from(&r.pipeline);
                     if f.exists() && !v.contains(&f) {
                         v.push(f);
@@ -539,15 +517,15 @@ fn main() -> ExitCode {
             };
             if let Some(d) = older_than {
                 if !(d >= 0.0 && d.is_finite()) {
-                    return Err(UsageError(format!("--older-than {d}: expected a number of days >= 0")).into());
+                    return Err(CliError::usage(format!("--older-than {d}: expected a number of days >= 0")));
                 }
             }
-            let opt = executor::GcOptions {
+            let opt = gc::GcOptions {
                 dry_run,
                 older_than: older_than.map(|d| std::time::Duration::from_secs_f64(d * 86400.0)),
             };
             let ps = files.iter().map(|f| load(f, &registry)).collect::<Result<Vec<_>, _>>()?;
-            let g = executor::gc(&ps, &registry, &cache.cache, opt)?;
+            let g = gc::gc(&ps, &registry, &cache.cache, opt)?;
             let bytes: u64 = g.removed.iter().map(|(_, b)| b).sum();
             if dry_run {
                 for (key, size) in &g.removed {
@@ -563,36 +541,35 @@ fn main() -> ExitCode {
                 g.removed.len(),
                 bytes as f64 / 1e3
             );
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Diff { a, b, cache, rel_tol } => {
-            let runs = executor::run_history(&cache.cache);
-            let pick = |name: &Option<String>,
-                        default_from_end: usize|
-             -> anyhow::Result<repro::pipeline::report::RunReport> {
-                match name {
-                    Some(n) => runs
-                        .iter()
-                        .find(|(p, _)| {
-                            p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
-                                || p.to_string_lossy() == n.as_str()
-                        })
-                        .map(|(_, r)| r.clone())
-                        .ok_or_else(|| UsageError(format!("no recorded run `{n}` (`repro runs` lists them)")).into()),
-                    None => {
-                        runs.len().checked_sub(default_from_end).map(|i| runs[i].1.clone()).ok_or_else(|| {
-                            UsageError(format!("{} recorded run(s): a diff needs two", runs.len())).into()
-                        })
+            let runs = report::run_history(&cache.cache);
+            let pick =
+                |name: &Option<String>,
+                 default_from_end: usize|
+                 -> Result<repro::pipeline::report::RunReport, CliError> {
+                    match name {
+                        Some(n) => runs
+                            .iter()
+                            .find(|(p, _)| {
+                                p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
+                                    || p.to_string_lossy() == n.as_str()
+                            })
+                            .map(|(_, r)| r.clone())
+                            .ok_or_else(|| CliError::usage(format!("no recorded run `{n}` (`repro runs` lists them)"))),
+                        None => runs.len().checked_sub(default_from_end).map(|i| runs[i].1.clone()).ok_or_else(|| {
+                            CliError::usage(format!("{} recorded run(s): a diff needs two", runs.len()))
+                        }),
                     }
-                }
-            };
+                };
             let (ra, rb) = (pick(&a, 2)?, pick(&b, 1)?);
             let store = repro::pipeline::cache::Cache::open_read_only(&cache.cache);
             print!("{}", repro::pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Runs { cache } => {
-            let runs = executor::run_history(&cache.cache);
+            let runs = report::run_history(&cache.cache);
             if runs.is_empty() {
                 println!("no recorded runs in {}", cache.cache.display());
             }
@@ -617,29 +594,27 @@ fn main() -> ExitCode {
                     r.wall_time_s
                 );
             }
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Point { kind, params } => {
             let Some(k) = registry.get(&kind) else {
                 let known: Vec<_> = registry.names().collect();
-                return Err(
-                    UsageError(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))).into()
-                );
+                return Err(CliError::usage(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))));
             };
             let mut yaml = String::new();
             let mut seen = std::collections::BTreeSet::new();
             for p in &params {
                 let Some((name, value)) = p.split_once('=').filter(|(name, _)| !name.trim().is_empty()) else {
-                    return Err(UsageError(format!("`{p}`: parameters are NAME=VALUE")).into());
+                    return Err(CliError::usage(format!("`{p}`: parameters are NAME=VALUE")));
                 };
                 if !seen.insert(name) {
-                    return Err(UsageError(format!("parameter `{name}` is given twice")).into());
+                    return Err(CliError::usage(format!("parameter `{name}` is given twice")));
                 }
                 yaml.push_str(&format!("{name}: {value}\n"));
             }
             let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
                 .map_err(|e| UsageError(format!("parameters: {e}")))?;
-            let (canonical, _) = k.check(&spec::to_json(&node)).map_err(|errors| {
+            let (canonical, _) = k.check(&parse::to_json(&node)).map_err(|errors| {
                 UsageError(
                     errors
                         .iter()
@@ -665,11 +640,11 @@ fn main() -> ExitCode {
             if t.n_rows() > 50 {
                 println!("({} more rows)", t.n_rows() - 50);
             }
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Schema => {
             println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Show { file, columns, csv, head, all } => {
             let df = repro::pipeline::table::read_parquet(&file)?;
@@ -717,7 +692,7 @@ fn main() -> ExitCode {
             if shown_rows < df.height() && !csv {
                 let _ = writeln!(out, "... {} of {} rows shown", shown_rows, df.height());
             }
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Report { pipeline, cache, figures, tables, out } => {
             let p = load(&pipeline, &registry)?;
@@ -730,7 +705,7 @@ fn main() -> ExitCode {
             };
             let (figures, claims) = repro::reproduction_report::write(&p, &versions, &sources, &out)?;
             println!("wrote {} ({figures} figures, {claims} claims)", out.display());
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Verify { produced, reference, rel_tol } => {
             let v = repro::pipeline::verify::verify(&produced, &reference, rel_tol)?;
@@ -744,26 +719,27 @@ fn main() -> ExitCode {
                 v.unchecked.len(),
                 reference.display()
             );
-            Ok(if v.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED_TASKS) })
+            Ok(if v.passed() { Exit::Success } else { Exit::FailedTasks })
         }
         Command::Kinds { kind: None } => {
             for k in registry.iter() {
                 println!("{:<28} v{:<3} {}", k.name(), k.version(), k.doc());
             }
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
         Command::Kinds { kind: Some(name) } => {
             let Some(k) = registry.get(&name) else {
                 let known: Vec<_> = registry.names().collect();
-                return Err(
-                    UsageError(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))).into()
-                );
+                return Err(CliError::usage(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))));
             };
             print!("{}", describe_kind(k, &registry));
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Success)
         }
     })();
-    result.unwrap_or_else(fail)
+    match result {
+        Ok(exit) => exit.into(),
+        Err(e) => e.report(),
+    }
 }
 
 #[cfg(test)]

@@ -38,8 +38,7 @@ fn the_peak_is_resolved_with_fewer_points_than_a_uniform_grid() {
     // finest spacing allowed (3 halvings: 49 points).
     assert!(n > 12 && n < 40, "{n} points");
     // The later rounds are reported as such.
-    let refined =
-        r.tasks().iter().filter(|t| t["reason"].as_str().unwrap_or("").starts_with("adaptive refinement")).count();
+    let refined = r.tasks().iter().filter(|t| t["reason"]["why"] == "adaptive_round").count();
     assert_eq!(refined, n - 7);
     // Against a uniform reference grid of 121 points: the piecewise-linear curve through the
     // adaptive points is within 3 % of the peak everywhere, and it finds the peak's height

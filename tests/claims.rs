@@ -134,7 +134,7 @@ fn the_thesis_pipeline_records_every_claim_with_a_reason_where_it_differs() {
     // At least 40 claims, every chapter covered, and each one recorded as differing carries
     // its reason and a docs link.
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/thesis.yaml")).unwrap();
-    let p = repro::pipeline::spec::load(
+    let p = repro::pipeline::parse::load(
         std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/thesis.yaml")),
         &repro::stages::registry(),
     )

@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use repro::pipeline::cache::{decode_entry, Cache, Entry, LockMode, Miss};
 use repro::pipeline::key::content_hash;
 use repro::pipeline::kind::Output;
-use repro::pipeline::spec;
+use repro::pipeline::parse;
 use repro::pipeline::table::Table;
 
 const SMALL: &str = r#"stages:
@@ -79,7 +79,7 @@ fn apply(mut b: Vec<u8>, muts: &[Mutation]) -> Vec<u8> {
 /// The parser's contract: a pipeline, or diagnostics that name the file and a line.
 fn check_parse(text: &str) {
     let registry = repro::stages::registry();
-    match spec::parse("fuzz.yaml", text, &registry) {
+    match parse::parse("fuzz.yaml", text, &registry) {
         Ok(p) => assert!(p.stages.iter().all(|s| !s.points.is_empty())),
         Err(e) => {
             assert!(!e.0.is_empty());
@@ -182,6 +182,6 @@ fn a_sweep_whose_size_overflows_is_an_error_not_a_panic() {
     // 100000^4 points overflow a 64-bit count (seen in the sweep expansion while writing
     // these tests; it was an arithmetic-overflow panic in debug builds).
     let text = "stages:\n  - name: s\n    kind: bem.sweep\n    params:\n      lambda: {linspace: [0.1, 1, 100000]}\n      W: {linspace: [0.1, 1, 100000]}\n      k: {linspace: [0.1, 0.5, 100000]}\n      V0: {logspace: [-1, 1, 100000]}\n";
-    let err = spec::parse("big.yaml", text, &repro::stages::registry()).unwrap_err().to_string();
+    let err = parse::parse("big.yaml", text, &repro::stages::registry()).unwrap_err().to_string();
     assert!(err.contains("big.yaml:5:") && err.contains("more than a million"), "{err}");
 }

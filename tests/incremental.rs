@@ -3,6 +3,7 @@
 
 mod common;
 use common::{sleep_pipeline, snapshot, Scratch};
+use serde_json::json;
 
 #[test]
 fn no_op_rerun_computes_nothing_and_rewrites_nothing() {
@@ -33,7 +34,7 @@ fn adding_a_sweep_value_computes_only_that_point() {
     assert_eq!(r.count(Some("sweep"), "cached"), 3);
     let t = r.task("sweep", "x=2.5");
     assert_eq!(t["status"], "computed");
-    assert_eq!(t["reason"], "new sweep point x=2.5");
+    assert_eq!(t["reason"], json!({"why": "new_point", "point": "x=2.5"}));
     // Its readers see a new table, so they rerun; the stage table has all four points.
     assert_eq!(r.count(Some("after"), "computed"), 1);
     assert_eq!(r.count(Some("fig"), "computed"), 1);
@@ -66,7 +67,7 @@ fn early_cutoff_when_a_recomputed_output_is_identical() {
     s.write("p.yaml", &yaml("1.2"));
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(Some("down"), "computed"), 1);
-    assert_eq!(r.task("down", "")["reason"], "input changed: up");
+    assert_eq!(r.task("down", "")["reason"], json!({"why": "input_changed", "stages": ["up"]}));
 }
 
 #[test]
@@ -79,7 +80,10 @@ fn editing_only_a_figure_style_reruns_only_that_figure() {
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 1);
     assert_eq!(r.task("fig", "")["status"], "computed");
-    assert_eq!(r.task("fig", "")["reason"], "parameters changed: title: \"first title\" -> \"second title\"");
+    assert_eq!(
+        r.task("fig", "")["reason"],
+        json!({"why": "parameters_changed", "changes": [{"param": "title", "from": "\"first title\"", "to": "\"second title\"", "set_by_cli": false}]})
+    );
     let svg2 = String::from_utf8(s.read("figures/fig.svg")).unwrap();
     assert!(svg2.contains("second title") && s.read("figures/fig.svg") != svg1);
 }
@@ -92,11 +96,14 @@ fn a_fixed_parameter_changed_in_a_swept_stage_is_named_with_its_values() {
     s.run("p.yaml", &[]);
     s.write("p.yaml", &sleep_pipeline("[1, 2]", 1, "t"));
     let (_, _, r) = s.run("p.yaml", &[]);
-    assert_eq!(r.task("sweep", "x=1")["reason"], "parameters changed: ms: 0 -> 1");
+    assert_eq!(
+        r.task("sweep", "x=1")["reason"],
+        json!({"why": "parameters_changed", "changes": [{"param": "ms", "from": "0", "to": "1", "set_by_cli": false}]})
+    );
     // A new value of the swept parameter is a new sweep point.
     s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 1, "t"));
     let (_, _, r) = s.run("p.yaml", &[]);
-    assert_eq!(r.task("sweep", "x=3")["reason"], "new sweep point x=3");
+    assert_eq!(r.task("sweep", "x=3")["reason"], json!({"why": "new_point", "point": "x=3"}));
 }
 
 #[test]
@@ -119,7 +126,7 @@ fn force_recomputes_a_stage_and_cutoff_spares_its_readers() {
     s.run("p.yaml", &[]);
     let (_, _, r) = s.run("p.yaml", &["--force", "sweep"]);
     assert_eq!(r.count(Some("sweep"), "computed"), 2);
-    assert_eq!(r.task("sweep", "x=1")["reason"], "forced (--force)");
+    assert_eq!(r.task("sweep", "x=1")["reason"], json!({"why": "forced"}));
     assert_eq!(r.count(Some("after"), "cached"), 1, "identical outputs: readers stay cached");
 }
 
@@ -160,7 +167,7 @@ fn keep_going_records_failures_and_skips_dependents() {
     assert_eq!(r.count(Some("after_good"), "computed"), 1);
     let skipped = r.task("after_bad", "");
     assert_eq!(skipped["status"], "skipped");
-    assert_eq!(skipped["reason"], "needs bad which did not complete");
+    assert_eq!(skipped["reason"], json!({"why": "needs_incomplete", "stages": ["bad"]}));
     assert!(err.contains("FAILED x=0: deliberate failure"), "{err}");
     // The successful point of the failed stage is cached; the failure is retried.
     let (_, _, r) = s.run("p.yaml", &[]);
@@ -217,10 +224,61 @@ fn stages_sharing_points_compute_each_shared_task_once() {
     assert_eq!(r.count(None, "computed"), 4);
     let twin = r.task("b", "x=2");
     assert_eq!(twin["status"], "cached");
-    assert!(twin["reason"].as_str().unwrap().contains("the same task as stage `a` point x=2"), "{twin}");
+    assert_eq!(twin["reason"], json!({"why": "same_task_as", "stage": "a", "point": "x=2"}), "{twin}");
     assert_eq!(s.table("b").height(), 3);
     // Both tables show the one computation's wall time, so a rerun rewrites neither.
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 0);
     assert_eq!(r.0["published"].as_array().unwrap().len(), 0, "{:?}", r.0["published"]);
+}
+
+/// The manifest a stage's last run left in the cache (one pipeline per scratch cache).
+fn manifest_file(s: &Scratch, stage: &str) -> std::path::PathBuf {
+    let dir = std::fs::read_dir(s.path("cache/manifests")).unwrap().flatten().next().unwrap().path();
+    dir.join(format!("{stage}.json"))
+}
+
+#[test]
+fn every_reason_for_recomputing_is_typed_in_the_report() {
+    let s = Scratch::new("typed-reasons");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("sweep", "x=1")["reason"], json!({"why": "never_run"}));
+    // An entry removed behind the cache's back: the same point, inputs and code.
+    let key = r.task("sweep", "x=1")["key"].as_str().unwrap().to_string();
+    std::fs::remove_file(s.path(&format!("cache/objects/{}/{key}.entry", &key[..2]))).unwrap();
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("sweep", "x=1")["reason"], json!({"why": "entry_missing"}));
+    assert_eq!(r.task("sweep", "x=2")["status"], "cached");
+    // A damaged entry.
+    let path = s.path(&format!("cache/objects/{}/{key}.entry", &key[..2]));
+    let mut bytes = std::fs::read(&path).unwrap();
+    let n = bytes.len();
+    bytes[n - 3] ^= 1;
+    std::fs::write(&path, bytes).unwrap();
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(r.task("sweep", "x=1")["reason"]["why"], "corrupted");
+    // The code of the kind changed since the last run (its manifest says v0) and the entry
+    // of the new code is not there yet.
+    let m = manifest_file(&s, "sweep");
+    let mut manifest: serde_json::Value = serde_json::from_slice(&std::fs::read(&m).unwrap()).unwrap();
+    let version = manifest["version"].as_u64().unwrap();
+    manifest["version"] = json!(0);
+    std::fs::write(&m, serde_json::to_vec(&manifest).unwrap()).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let (_, _, r) = s.run("p.yaml", &[]);
+    assert_eq!(
+        r.task("sweep", "x=1")["reason"],
+        json!({"why": "code_version_changed", "kind": "util.sleep", "from": 0, "to": version})
+    );
+    // Another kind for the same stage name.
+    let s = Scratch::new("typed-reasons-kind");
+    s.write("p.yaml", "stages:\n  - name: one\n    kind: util.sleep\n    params: {x: 1}\n");
+    s.run("p.yaml", &[]);
+    s.write("p.yaml", "stages:\n  - name: one\n    kind: util.fail\n    params: {x: 1, message: m}\n");
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.task("one", "")["reason"], json!({"why": "kind_changed", "from": "util.sleep", "to": "util.fail"}));
+    // The summary prints each reason as a sentence.
+    assert!(err.contains("kind changed (util.sleep -> util.fail)"), "{err}");
 }

@@ -4,6 +4,7 @@
 
 mod common;
 use common::{sleep_pipeline, Scratch};
+use serde_json::json;
 
 #[test]
 fn an_override_recomputes_what_it_changes_and_says_so() {
@@ -13,7 +14,10 @@ fn an_override_recomputes_what_it_changes_and_says_so() {
     assert_eq!(s.run("p.yaml", &[]).0, 0);
     let (code, err, r) = s.run("p.yaml", &["-S", "sweep.ms=1"]);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(r.task("sweep", "x=1")["reason"], "parameters changed: ms: 0 -> 1 (-S)");
+    assert_eq!(
+        r.task("sweep", "x=1")["reason"],
+        json!({"why": "parameters_changed", "changes": [{"param": "ms", "from": "0", "to": "1", "set_by_cli": true}]})
+    );
     assert_eq!(r.0["overrides"], serde_json::json!(["sweep.ms=1"]));
     // The stage's output did not change (util.sleep returns x): nothing downstream reruns.
     assert_eq!(r.count(Some("fig"), "cached"), 1);
@@ -25,7 +29,7 @@ fn an_override_recomputes_what_it_changes_and_says_so() {
     let (code, err, r) = s.run("p.yaml", &["-S", "sweep.ms=1", "--set", "sweep.x=[1, 2, 3]"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(r.count(Some("sweep"), "computed"), 1);
-    assert_eq!(r.task("sweep", "x=3")["reason"], "new sweep point x=3");
+    assert_eq!(r.task("sweep", "x=3")["reason"], json!({"why": "new_point", "point": "x=3"}));
     // Without it, the file's parameters again: their results are still in the cache.
     let (_, _, r) = s.run("p.yaml", &[]);
     assert_eq!(r.count(None, "computed"), 0);

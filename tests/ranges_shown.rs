@@ -5,10 +5,11 @@
 
 mod common;
 use common::Scratch;
+use repro::pipeline::parse;
 use repro::pipeline::spec::{self, Pipeline};
 
 fn parse(text: &str) -> Result<Pipeline, String> {
-    spec::parse("p.yaml", text, &repro::stages::registry()).map_err(|e| e.to_string())
+    parse::parse("p.yaml", text, &repro::stages::registry()).map_err(|e| e.to_string())
 }
 
 /// The sorted distinct values of `param` over a stage's points.
@@ -144,7 +145,7 @@ fn points_outside_every_range_shown_are_warned_of_unless_another_stage_reads_the
 
 #[test]
 fn the_thesis_pipeline_samples_what_its_figures_show_and_nothing_else() {
-    let p = spec::load(std::path::Path::new("pipelines/thesis.yaml"), &repro::stages::registry()).unwrap();
+    let p = parse::load(std::path::Path::new("pipelines/thesis.yaml"), &repro::stages::registry()).unwrap();
     assert!(p.warnings.is_empty(), "{}", p.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n"));
     // The sweeps turned into `shown` kept their points (and so their cache keys).
     let grid = |a: f64, b: f64, n: usize| -> Vec<f64> { (0..n).map(|i| spec::spaced(true, a, b, n, i)).collect() };
@@ -203,7 +204,7 @@ fn every_committed_pipeline_loads_without_warnings() {
     files.sort();
     assert!(files.len() >= 5, "{files:?}");
     for f in files {
-        let p = spec::load(&f, &registry).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        let p = parse::load(&f, &registry).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
         assert!(p.warnings.is_empty(), "{}: {:?}", f.display(), p.warnings);
     }
 }

@@ -47,7 +47,7 @@ fn default_pipeline_uses_only_what_the_schema_declares() {
     let schema = generated();
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/pipelines/thesis.yaml")).unwrap();
     let root = marked_yaml::parse_yaml(0, &text).unwrap();
-    let pipeline = repro::pipeline::spec::to_json(&root);
+    let pipeline = repro::pipeline::parse::to_json(&root);
     for stage in pipeline["stages"].as_array().unwrap() {
         let kind = stage["kind"].as_str().unwrap();
         let props = &schema["$defs"][format!("params.{kind}")]["properties"];

@@ -18,33 +18,10 @@
 //! and each point is an ordinary, content-addressed task: changing `tol` reuses every
 //! point already computed. A dry run follows the rounds as far as the cache answers them.
 
-use super::kind::{DynKind, Output};
-use super::spec::{label_token, Point};
+use crate::kind::{DynKind, Output};
+use crate::spec::{label_token, round12, AdaptiveAxis, Point};
 use serde_json::Value;
 use std::collections::BTreeMap;
-
-/// The adaptive axis of a stage (at most one per stage).
-#[derive(Clone, Debug, PartialEq)]
-pub struct AdaptiveAxis {
-    /// The swept parameter.
-    pub param: String,
-    /// Sample in log10 of the parameter (`logspace`) or in the parameter (`linspace`).
-    pub log: bool,
-    /// The range in the sampling coordinate and the number of initial points.
-    pub from: f64,
-    pub to: f64,
-    pub initial: usize,
-    /// Output columns whose curves must be resolved (one row per point).
-    pub y: Vec<String>,
-    /// Compare y in log10 (for curves drawn on a log axis).
-    pub log_y: bool,
-    /// Largest deviation from the chord, as a fraction of the curve's span of y.
-    pub tol: f64,
-    /// Halvings of the initial spacing at most.
-    pub levels: u32,
-    /// Points per curve at most.
-    pub max_points: usize,
-}
 
 impl AdaptiveAxis {
     /// The sampling coordinate of a parameter value.
@@ -58,7 +35,7 @@ impl AdaptiveAxis {
 
     /// The parameter value at a sampling coordinate, rounded to 12 significant digits.
     pub fn value(&self, t: f64) -> f64 {
-        super::spec::round12(if self.log { 10f64.powf(t) } else { t })
+        round12(if self.log { 10f64.powf(t) } else { t })
     }
 
     /// The smallest spacing refinement may reach.

@@ -159,31 +159,42 @@ fn unlink_foreign_links(root: &Path) {
     }
 }
 
+/// Why the cache could not be opened for a run.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenError {
+    /// Another run holds it (and the caller asked not to wait).
+    #[error(transparent)]
+    Busy(CacheBusy),
+    /// It cannot be created, locked or written.
+    #[error(transparent)]
+    Io(#[from] anyhow::Error),
+}
+
 /// Takes an exclusive lock on `file` (the cache's lock file or directory): at once, or, held
 /// by another run, refused (`LockMode::Refuse`) or waited for, saying who holds it.
-fn lock_exclusive(file: &File, root: &Path, mode: LockMode) -> Result<()> {
+fn lock_exclusive(file: &File, root: &Path, mode: LockMode) -> Result<(), OpenError> {
     match file.try_lock() {
         Ok(()) => Ok(()),
         Err(fs::TryLockError::WouldBlock) => {
             let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
             let holder = holder.trim().to_string();
             if mode == LockMode::Refuse {
-                return Err(CacheBusy { dir: root.display().to_string(), holder }.into());
+                return Err(OpenError::Busy(CacheBusy { dir: root.display().to_string(), holder }));
             }
             eprintln!(
                 "repro: the cache {} is in use by another repro ({holder}); waiting for it to finish",
                 root.display()
             );
-            file.lock()?;
+            file.lock().context("locking the cache")?;
             Ok(())
         }
-        Err(fs::TryLockError::Error(e)) => Err(e).context("locking the cache"),
+        Err(fs::TryLockError::Error(e)) => Err(anyhow::Error::new(e).context("locking the cache").into()),
     }
 }
 
 impl Cache {
     /// Opens the cache for reading and writing, holding its lock for as long as it lives.
-    pub fn open(root: &Path, mode: LockMode) -> Result<Cache> {
+    pub fn open(root: &Path, mode: LockMode) -> Result<Cache, OpenError> {
         fs::create_dir_all(root).with_context(|| format!("creating the cache directory {}", root.display()))?;
         let lock_path = root.join("lock");
         let file =

@@ -71,7 +71,11 @@ pub fn diff(a: &RunReport, b: &RunReport, cache: &Cache, rel_tol: f64) -> RunDif
         ..Default::default()
     };
     for t in b.tasks.iter().filter(|t| t.status == Status::Computed) {
-        d.computed.push((t.stage.clone(), t.point.clone(), t.reason.clone().unwrap_or_default()));
+        d.computed.push((
+            t.stage.clone(),
+            t.point.clone(),
+            t.reason.as_ref().map(|r| r.to_string()).unwrap_or_default(),
+        ));
     }
     let keys_a: BTreeMap<(&str, &str), &str> =
         a.tasks.iter().filter_map(|t| Some(((t.stage.as_str(), t.point.as_str()), t.key.as_deref()?))).collect();

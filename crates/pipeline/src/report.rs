@@ -1,8 +1,11 @@
 //! The run report: one record per task (written as JSON with `--report` and always to
 //! `cache/runs/last.json`), and the summary printed at the end of a run.
 
+use crate::reason::Reason;
+use crate::task::TaskError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, PartialOrd, Ord)]
 #[serde(rename_all = "snake_case")]
@@ -29,14 +32,20 @@ pub struct TaskRecord {
     pub point: String,
     pub key: Option<String>,
     pub status: Status,
-    /// Why it was computed (or would be): `never run`, `new sweep point`, ...
-    pub reason: Option<String>,
+    /// Why it was computed (or would be), or why not (`crate::reason`).
+    #[serde(default, deserialize_with = "crate::reason::deserialize_reason")]
+    pub reason: Option<Reason>,
     pub wall_time_s: f64,
     /// When it started, in seconds from the start of the run (computed in this process;
     /// with `wall_time_s`, the run's timeline).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub started_s: Option<f64>,
+    /// How it failed, as a message.
     pub error: Option<String>,
+    /// How it failed, typed (`crate::task::TaskError`: failed, panicked, timed out, invalid
+    /// output, not stored, worker).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub failure: Option<TaskError>,
     /// Where it was computed when not in this process (`SLURM job 12_3`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ran_on: Option<String>,
@@ -49,7 +58,7 @@ impl TaskRecord {
         point: &str,
         key: Option<String>,
         status: Status,
-        reason: Option<String>,
+        reason: Option<Reason>,
     ) -> Self {
         TaskRecord {
             stage: stage.name.clone(),
@@ -61,8 +70,15 @@ impl TaskRecord {
             wall_time_s: 0.0,
             started_s: None,
             error: None,
+            failure: None,
             ran_on: None,
         }
+    }
+
+    /// Records how the task failed.
+    pub fn failed_with(&mut self, e: TaskError) {
+        self.error = Some(e.to_string());
+        self.failure = Some(e);
     }
 }
 
@@ -139,7 +155,7 @@ impl RunReport {
             for t in &tasks {
                 if let Some(r) = &t.reason {
                     if matches!(t.status, Status::Computed | Status::WouldRun | Status::Failed) {
-                        *reasons.entry(r.clone()).or_default() += 1;
+                        *reasons.entry(r.to_string()).or_default() += 1;
                     }
                 }
             }
@@ -158,7 +174,7 @@ impl RunReport {
                     let label = if t.point.is_empty() { "(single point)" } else { &t.point };
                     let st = serde_json::to_value(t.status).unwrap().as_str().unwrap().to_string();
                     let key = t.key.as_deref().map(|k| &k[..12]).unwrap_or("?");
-                    let why = t.reason.as_deref().unwrap_or("");
+                    let why = t.reason.as_ref().map(|r| r.to_string()).unwrap_or_default();
                     let on = t.ran_on.as_deref().map(|o| format!(" [{o}]")).unwrap_or_default();
                     s.push_str(&format!("      {label:<40} {key} {st:<9} {why}{on}\n"));
                 }
@@ -216,6 +232,30 @@ pub fn git_commit(dir: &std::path::Path) -> Option<(String, bool)> {
     let commit = git(&["rev-parse", "HEAD"])?;
     let modified = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
     Some((commit, modified))
+}
+
+/// The run reports kept in the history of a cache (`runs/run-*.json`), oldest first; a report
+/// that cannot be read is skipped.
+pub fn run_history(cache_dir: &Path) -> Vec<(PathBuf, RunReport)> {
+    let Ok(entries) = std::fs::read_dir(cache_dir.join("runs")) else { return Vec::new() };
+    let mut runs: Vec<(PathBuf, RunReport)> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+            name.starts_with("run-") && name.ends_with(".json")
+        })
+        .filter_map(|p| {
+            let r: RunReport = serde_json::from_slice(&std::fs::read(&p).ok()?).ok()?;
+            Some((p, r))
+        })
+        .collect();
+    runs.sort_by(|a, b| a.1.started_unix_ms.cmp(&b.1.started_unix_ms).then(a.0.cmp(&b.0)));
+    runs
+}
+
+/// Milliseconds since the Unix epoch (0 if the clock is before it).
+pub fn unix_ms() -> u64 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis() as u64)
 }
 
 #[cfg(test)]

@@ -22,6 +22,9 @@
 
 use super::cache::{is_key, write_atomic, Cache, Entry};
 use super::key::Hash;
+use crate::backend::{Backend, Settled, Task};
+use crate::kind::Registry;
+use crate::task::TaskError;
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -72,7 +75,7 @@ pub struct TaskSpec {
 #[derive(Debug, Serialize, Deserialize)]
 pub struct Failure {
     pub key: Hash,
-    pub error: String,
+    pub error: TaskError,
 }
 
 fn dir(cache: &Cache, sub: &str) -> PathBuf {
@@ -112,8 +115,8 @@ impl Placement {
 }
 
 /// How a task ended: its entry or its error, and where it ran (None: found in the cache).
-pub struct Settled {
-    pub result: Result<Entry, String>,
+pub struct Ran {
+    pub result: Result<Entry, TaskError>,
     pub placement: Option<String>,
 }
 
@@ -248,8 +251,8 @@ impl<'a> Coordinator<'a> {
 
     /// Runs `tasks` on SLURM and waits for them; per task its entry or its error.
     /// `done(i)` is called as task i completes (progress).
-    pub fn run(&mut self, tasks: &[TaskSpec], done: &(dyn Fn(usize) + Sync)) -> Result<Vec<Settled>> {
-        let mut results: Vec<Option<Result<Entry, String>>> = vec![None; tasks.len()];
+    pub fn run(&mut self, tasks: &[TaskSpec], done: &(dyn Fn(usize) + Sync)) -> Result<Vec<Ran>> {
+        let mut results: Vec<Option<Result<Entry, TaskError>>> = vec![None; tasks.len()];
         // Where each settled task last ran (only tasks that ran on SLURM).
         let mut ran_on: BTreeMap<usize, String> = BTreeMap::new();
         let mut place: BTreeMap<usize, Placement> = BTreeMap::new();
@@ -323,14 +326,16 @@ impl<'a> Coordinator<'a> {
                     );
                     retry.entry(p.attempt + 1).or_default().push(i);
                 } else {
-                    results[i] = Some(Err(format!(
-                        "SLURM job {}_{} ended without a result after {} attempt(s); its stderr ({}):\n{}",
-                        p.job,
-                        p.index,
-                        p.attempt + 1,
-                        err.display(),
-                        tail(&err, 20)
-                    )));
+                    results[i] = Some(Err(TaskError::Worker {
+                        message: format!(
+                            "SLURM job {}_{} ended without a result after {} attempt(s); its stderr ({}):\n{}",
+                            p.job,
+                            p.index,
+                            p.attempt + 1,
+                            err.display(),
+                            tail(&err, 20)
+                        ),
+                    }));
                     ran_on.insert(i, p.describe());
                     done(i);
                 }
@@ -343,7 +348,7 @@ impl<'a> Coordinator<'a> {
         Ok(results
             .into_iter()
             .enumerate()
-            .map(|(i, r)| Settled { result: r.expect("every task settled"), placement: ran_on.remove(&i) })
+            .map(|(i, r)| Ran { result: r.expect("every task settled"), placement: ran_on.remove(&i) })
             .collect())
     }
 
@@ -353,7 +358,7 @@ impl<'a> Coordinator<'a> {
         idx: &[usize],
         attempt: u32,
         place: &mut BTreeMap<usize, Placement>,
-        results: &mut [Option<Result<Entry, String>>],
+        results: &mut [Option<Result<Entry, TaskError>>],
         done: &(dyn Fn(usize) + Sync),
     ) -> Result<()> {
         if idx.is_empty() {
@@ -372,7 +377,7 @@ impl<'a> Coordinator<'a> {
             }
             Err(e) => {
                 for &i in idx {
-                    results[i] = Some(Err(format!("{e:#}")));
+                    results[i] = Some(Err(TaskError::Worker { message: format!("submitting to SLURM: {e:#}") }));
                     done(i);
                 }
             }
@@ -380,7 +385,7 @@ impl<'a> Coordinator<'a> {
         Ok(())
     }
 
-    fn read_failure(&self, key: &str) -> Option<String> {
+    fn read_failure(&self, key: &str) -> Option<TaskError> {
         let bytes = std::fs::read(failure_path(self.cache, key)).ok()?;
         let f: Failure = serde_json::from_slice(&bytes).ok()?;
         Some(f.error)
@@ -418,20 +423,22 @@ pub fn work(registry: &super::kind::Registry, cache_dir: &Path, list: &Path, ind
     }
 }
 
-fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Result<f64, String> {
-    let bytes = std::fs::read(spec_path(cache, key)).map_err(|e| format!("reading its task specification: {e}"))?;
-    let spec: TaskSpec = serde_json::from_slice(&bytes).map_err(|e| format!("its task specification: {e}"))?;
+fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Result<f64, TaskError> {
+    let worker = |message: String| TaskError::Worker { message };
+    let bytes =
+        std::fs::read(spec_path(cache, key)).map_err(|e| worker(format!("reading its task specification: {e}")))?;
+    let spec: TaskSpec = serde_json::from_slice(&bytes).map_err(|e| worker(format!("its task specification: {e}")))?;
     if spec.key != key {
-        return Err(format!("its task specification holds key {}", spec.key));
+        return Err(worker(format!("its task specification holds key {}", spec.key)));
     }
-    let kind = registry.get(&spec.kind).ok_or_else(|| format!("unknown stage kind `{}`", spec.kind))?;
+    let kind = registry.get(&spec.kind).ok_or_else(|| worker(format!("unknown stage kind `{}`", spec.kind)))?;
     if kind.version() != spec.version {
-        return Err(format!(
+        return Err(worker(format!(
             "this worker's {} is v{}, the coordinator's v{}: run the same repro build on the cluster",
             spec.kind,
             kind.version(),
             spec.version
-        ));
+        )));
     }
     let mut tables = BTreeMap::new();
     let mut input_hashes = BTreeMap::new();
@@ -439,8 +446,8 @@ fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Resul
         let mut t = super::table::Table::new();
         let mut hashes = Vec::with_capacity(keys.len());
         for k in keys {
-            let e = cache.get(k).map_err(|m| format!("input `{name}`: entry {k}: {m:?}"))?;
-            t.append(&e.output.table).map_err(|e| format!("input `{name}`: {e:#}"))?;
+            let e = cache.get(k).map_err(|m| worker(format!("input `{name}`: entry {k}: {m:?}")))?;
+            t.append(&e.output.table).map_err(|e| worker(format!("input `{name}`: {e:#}")))?;
             hashes.push(e.output_hash);
         }
         tables.insert(name.clone(), t);
@@ -450,15 +457,48 @@ fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Resul
     // the result will be stored under (a damaged or foreign file cannot plant a result).
     let actual = super::key::task_key(&spec.kind, spec.version, &spec.params, &input_hashes);
     if actual != key {
-        return Err(format!(
+        return Err(worker(format!(
             "its task specification does not hash to its key (hashes to {actual}): damaged or foreign"
-        ));
+        )));
     }
     let inputs = super::kind::Inputs { tables: tables.iter().map(|(n, t)| (n.clone(), t)).collect() };
     let limit =
         (spec.time_limit_s > 0.0).then(|| Duration::try_from_secs_f64(spec.time_limit_s).unwrap_or(Duration::MAX));
-    let (out, wall) = super::executor::compute_task(registry, kind, &spec.key, &spec.params, &inputs, cache, limit);
+    let (out, wall) = crate::task::compute_task(registry, kind, &spec.key, &spec.params, &inputs, cache, limit);
     out.map(|_| wall)
+}
+
+impl Backend for Coordinator<'_> {
+    fn compute(
+        &mut self,
+        tasks: &[Task],
+        _registry: &Registry,
+        _cache: &Cache,
+        done: &(dyn Fn(usize) + Sync),
+    ) -> Result<Vec<Settled>> {
+        let specs: Vec<TaskSpec> = tasks
+            .iter()
+            .map(|t| TaskSpec {
+                key: t.key.clone(),
+                kind: t.kind.name().to_string(),
+                version: t.kind.version(),
+                params: t.params.clone(),
+                inputs: t.input_keys.iter().map(|(n, k)| (n.clone(), k.clone())).collect(),
+                time_limit_s: t.time_limit.as_secs_f64(),
+            })
+            .collect();
+        Ok(self
+            .run(&specs, done)?
+            .into_iter()
+            .map(|r| {
+                let (result, wall_time_s) = match r.result {
+                    Ok(e) => (Ok(e.output), e.wall_time_s),
+                    Err(e) => (Err(e), 0.0),
+                };
+                Settled { result, wall_time_s, started_s: None, ran_on: r.placement }
+            })
+            .collect())
+    }
 }
 
 #[cfg(test)]

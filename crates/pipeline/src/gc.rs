@@ -1,0 +1,67 @@
+//! Garbage collection of the cache: an entry is kept while a task of a given pipeline, or
+//! of a run in the cache's history (younger than a given age), refers to it; the rest is
+//! removed, or listed in a dry run. Nothing outside `objects/` is touched.
+
+use crate::cache::{Cache, LockMode};
+use crate::executor::{run, RunOptions};
+use crate::key::Hash;
+use crate::kind::Registry;
+use crate::report::{run_history, unix_ms};
+use crate::spec::Pipeline;
+use anyhow::Result;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// What `gc` keeps and removes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GcOptions {
+    /// List what would go, remove nothing.
+    pub dry_run: bool,
+    /// Keep the entries of recorded runs younger than this only (None: of every recorded run).
+    pub older_than: Option<std::time::Duration>,
+}
+
+/// What `gc` found.
+#[derive(Clone, Debug, Default)]
+pub struct GcSummary {
+    pub kept: usize,
+    /// The entries removed (or, in a dry run, that would be), with their sizes.
+    pub removed: Vec<(Hash, u64)>,
+    /// The recorded runs whose entries were kept.
+    pub runs_kept: usize,
+}
+
+/// Removes cache entries that nothing refers to: no task of the given pipelines, and no task
+/// of a run in the cache's history (younger than `older_than`, when given). A dry run lists
+/// them without removing.
+pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: GcOptions) -> Result<GcSummary> {
+    let mut live: BTreeSet<String> = BTreeSet::new();
+    for p in pipelines {
+        let opts =
+            RunOptions { cache_dir: cache_dir.to_path_buf(), dry_run: true, progress: false, ..Default::default() };
+        let report = run(p, registry, &opts)?;
+        live.extend(report.tasks.into_iter().filter_map(|t| t.key));
+    }
+    let now_ms = unix_ms();
+    let mut summary = GcSummary::default();
+    for (_, r) in run_history(cache_dir) {
+        let young = opt.older_than.is_none_or(|age| now_ms.saturating_sub(r.started_unix_ms) < age.as_millis() as u64);
+        if young {
+            summary.runs_kept += 1;
+            live.extend(r.tasks.into_iter().filter_map(|t| t.key));
+        }
+    }
+    let cache = if opt.dry_run { Cache::open_read_only(cache_dir) } else { Cache::open(cache_dir, LockMode::Wait)? };
+    for key in cache.all_keys()? {
+        if live.contains(&key) {
+            summary.kept += 1;
+        } else if opt.dry_run {
+            let size = std::fs::metadata(cache.entry_path(&key)).map(|m| m.len()).unwrap_or(0);
+            summary.removed.push((key, size));
+        } else {
+            let size = cache.remove(&key)?;
+            summary.removed.push((key, size));
+        }
+    }
+    Ok(summary)
+}

@@ -1,0 +1,499 @@
+//! The pipeline file: parsing, sweep expansion and validation, with errors that name the
+//! file, line and column.
+//!
+//! ```yaml
+//! stages:
+//!   - name: persson            # unique, [A-Za-z0-9_.-]
+//!     kind: theory.persson     # a registered stage kind
+//!     params:                  # checked against the kind's parameter type
+//!       inv_k: [1.1, 2, 10]    # a sweep: a list,
+//!       V0: {logspace: [-3, 3, 61]}   # or 10^from..10^to in n points, or {linspace: [from, to, n]}
+//!       # or refined where the curve of an output column bends or peaks (`adaptive`):
+//!       # V0: {adaptive: {logspace: [-3, 3, 13], y: mu_star, tol: 0.01}}
+//!       # or over the range the figures that plot it show (their `x_range`), in n points:
+//!       # V0: {shown: 49}   or   V0: {adaptive: {shown: 13, y: mu_star, tol: 0.01}}
+//!     needs: [other_stage]     # stages whose tables this stage reads
+//! ```
+//! A stage with sweeps expands into one point per element of the Cartesian product.
+//! Nothing is run when any error is found; all errors found are reported together.
+//!
+//! Ranges shown: a stage kind may declare that a stage shows a column of another stage
+//! over a range ([`ShownRange`], a figure's `x_range`). A sweep of that parameter may
+//! sample it (`shown`), and any sweep of it is checked against it: one that leaves part of
+//! the range without points, or (when every stage that reads it shows the column over a
+//! declared range) computes points outside every range shown, gets a warning.
+
+mod sweep;
+mod yaml;
+
+pub use yaml::to_json;
+
+use crate::kind::{FieldError, Registry};
+use crate::spec::{Diagnostic, InvalidPipeline, Location, Override, Pipeline, Point, Stage};
+use marked_yaml::types::{MarkedMappingNode, MarkedScalarNode, Node};
+use std::collections::{BTreeMap, BTreeSet};
+use sweep::{check_ranges_shown, expand_points, ranges_shown};
+use yaml::{check_keys, mapping_location, marker_location, span_location, Ctx};
+
+/// Reads and validates a pipeline file.
+pub fn load(path: &std::path::Path, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    load_with(path, registry, &[])
+}
+
+/// Reads a pipeline file, sets the parameters `overrides` name (each replaces the stage's
+/// parameter, or adds it), and validates the result.
+pub fn load_with(
+    path: &std::path::Path,
+    registry: &Registry,
+    overrides: &[Override],
+) -> Result<Pipeline, InvalidPipeline> {
+    let file = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| {
+        InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.clone(), line: 0, column: 0 },
+            message: format!("cannot read the pipeline file: {e}"),
+        }])
+    })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        // Located at the first invalid byte.
+        let at = e.utf8_error().valid_up_to();
+        let before = &e.as_bytes()[..at];
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let column = at - before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+        InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.clone(), line, column },
+            message: format!("the pipeline file is not UTF-8 (invalid byte at offset {at})"),
+        }])
+    })?;
+    parse_with(&file, &text, registry, overrides)
+}
+
+fn load_error(file: &str, e: marked_yaml::LoadError) -> Diagnostic {
+    use marked_yaml::LoadError::*;
+    let (location, message) = match &e {
+        TopLevelMustBeMapping(m) => {
+            (marker_location(file, m), "the top level must be a mapping with a `stages` list".to_string())
+        }
+        TopLevelMustBeSequence(m) | UnexpectedAnchor(m) | MappingKeyMustBeScalar(m) | UnexpectedTag(m) => {
+            (marker_location(file, m), strip_marker(&e.to_string()))
+        }
+        ScanError(m, _) => (marker_location(file, m), format!("invalid YAML: {}", strip_marker(&e.to_string()))),
+        DuplicateKey(inner) => (
+            span_location(file, inner.key.span()),
+            format!(
+                "duplicate key `{}` (first given at line {})",
+                inner.key.as_str(),
+                inner.prev_key.span().start().map_or(0, |m| m.line())
+            ),
+        ),
+    };
+    Diagnostic { location, message }
+}
+
+/// The line (1-based) where a second YAML document starts: a `---` or `...` marker after
+/// the first document's content (a `---` before any content opens the first document).
+fn second_document(text: &str) -> Option<usize> {
+    let mut content = false;
+    for (i, line) in text.lines().enumerate() {
+        let marker = |m: &str| line == m || line.starts_with(&format!("{m} ")) || line.starts_with(&format!("{m}\t"));
+        if marker("---") || marker("...") {
+            if content {
+                return Some(i + 1);
+            }
+            continue;
+        }
+        let t = line.trim_start();
+        if !t.is_empty() && !t.starts_with('#') {
+            content = true;
+        }
+    }
+    None
+}
+
+fn strip_marker(s: &str) -> String {
+    // marked_yaml prefixes messages with its own marker; we print ours.
+    match s.split_once(": ") {
+        Some((head, rest)) if head.chars().any(|c| c.is_ascii_digit()) => rest.to_string(),
+        _ => s.to_string(),
+    }
+}
+
+/// Parses pipeline text (exposed for tests).
+pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
+    parse_with(file, text, registry, &[])
+}
+
+/// Sets each override's parameter in the parsed file: a diagnostic per override that names no
+/// stage, or whose value is not YAML.
+fn apply_overrides(file: &str, root: &mut Node, overrides: &[Override]) -> Vec<Diagnostic> {
+    let mut errors = Vec::new();
+    let at = |o: &Override, message: String| Diagnostic {
+        location: Location { file: format!("{file} (-S {o})"), line: 0, column: 0 },
+        message,
+    };
+    for o in overrides {
+        let options = marked_yaml::LoaderOptions::default().prevent_coercion(true);
+        let value = match marked_yaml::parse_yaml_with_options(0, format!("v: {}", o.value), options) {
+            Ok(Node::Mapping(m)) => m.get_node("v").cloned(),
+            _ => None,
+        };
+        let Some(value) = value else {
+            errors.push(at(o, format!("`{}` is not a YAML value", o.value)));
+            continue;
+        };
+        let stages = match root.as_mapping_mut().and_then(|m| m.get_mut(&MarkedScalarNode::from("stages"))) {
+            Some(Node::Sequence(seq)) => seq,
+            _ => {
+                errors.push(at(o, "the pipeline has no `stages` list".into()));
+                continue;
+            }
+        };
+        let names: Vec<String> =
+            stages.iter().filter_map(|n| n.as_mapping()?.get_scalar("name").map(|s| s.as_str().to_string())).collect();
+        let Some(stage) = stages
+            .iter_mut()
+            .filter_map(|n| n.as_mapping_mut())
+            .find(|m| m.get_scalar("name").is_some_and(|s| s.as_str() == o.stage))
+        else {
+            let known: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+            let hint = suggestion(&o.stage, &known).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+            errors.push(at(o, format!("no stage `{}` in the pipeline{hint}", o.stage)));
+            continue;
+        };
+        let key = MarkedScalarNode::from("params");
+        if !matches!(stage.get(&key), Some(Node::Mapping(_))) {
+            stage.insert(key.clone(), Node::Mapping(MarkedMappingNode::new_empty(marked_yaml::Span::new_blank())));
+        }
+        if let Some(Node::Mapping(params)) = stage.get_mut(&key) {
+            params.insert(MarkedScalarNode::from(o.param.as_str()), value);
+        }
+    }
+    errors
+}
+
+/// `parse`, with `overrides` applied to the parsed file before validation.
+pub fn parse_with(
+    file: &str,
+    text: &str,
+    registry: &Registry,
+    overrides: &[Override],
+) -> Result<Pipeline, InvalidPipeline> {
+    if let Some(line) = second_document(text) {
+        return Err(InvalidPipeline(vec![Diagnostic {
+            location: Location { file: file.to_string(), line, column: 1 },
+            message: "a pipeline file holds one YAML document; a second one starts here".to_string(),
+        }]));
+    }
+    // A quoted scalar stays text (`A_max: "5.0"` is a string, as for the JSON Schema).
+    let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true).prevent_coercion(true);
+    let mut root = marked_yaml::parse_yaml_with_options(0, text, options)
+        .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
+    let errors = apply_overrides(file, &mut root, overrides);
+    if !errors.is_empty() {
+        return Err(InvalidPipeline(errors));
+    }
+    let mut cx =
+        Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new(), ranges_used: BTreeSet::new() };
+    let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
+    check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
+    let description = root_map.get_scalar("description").map(|s| s.as_str().to_string()).unwrap_or_default();
+    let mut stages = Vec::new();
+    match root_map.get_node("stages") {
+        None => cx.err(cx.loc(&root), "missing `stages`: a pipeline is a list of stages"),
+        Some(Node::Sequence(seq)) => {
+            cx.shown = ranges_shown(file, seq, registry);
+            for node in seq.iter() {
+                if let Some(s) = parse_stage(&mut cx, node, registry) {
+                    stages.push(s);
+                }
+            }
+        }
+        Some(other) => cx.err(cx.loc(other), "`stages` must be a list of stages"),
+    }
+    check_graph(&mut cx, &stages);
+    if cx.errors.is_empty() {
+        let stages: Vec<Stage> = stages.into_iter().map(|s| s.stage).collect();
+        check_ranges_shown(&mut cx, &stages);
+        cx.warnings.sort_by_key(|w| (w.0.location.line, w.0.location.column));
+        Ok(Pipeline {
+            file: file.to_string(),
+            description,
+            stages,
+            warnings: cx.warnings,
+            overrides: overrides.iter().map(|o| o.to_string()).collect(),
+        })
+    } else {
+        cx.errors.sort_by_key(|d| (d.location.line, d.location.column));
+        Err(InvalidPipeline(cx.errors))
+    }
+}
+
+struct ParsedStage {
+    stage: Stage,
+    need_locations: Vec<Location>,
+}
+
+fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedStage> {
+    let Some(map) = node.as_mapping() else {
+        cx.err(cx.loc(node), "a stage must be a mapping with `name`, `kind`, `params` and `needs`");
+        return None;
+    };
+    check_keys(cx, map, &["name", "kind", "params", "needs", "description", "publish", "time_limit"], "a stage");
+    let name = match map.get_node("name") {
+        Some(Node::Scalar(s)) if is_valid_name(s.as_str()) => s.as_str().to_string(),
+        Some(n) => {
+            cx.err(cx.loc(n), "a stage name must be 1 to 100 letters, digits, `_`, `-` or `.`, not starting with `.` or `-` (it names the published files)");
+            return None;
+        }
+        None => {
+            cx.err(cx.loc(node), "missing field `name` in a stage");
+            return None;
+        }
+    };
+    let kind_node = match map.get_node("kind") {
+        Some(n @ Node::Scalar(_)) => n,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `kind` must be a string"));
+            return None;
+        }
+        None => {
+            cx.err(cx.loc(node), format!("missing field `kind` in stage `{name}`"));
+            return None;
+        }
+    };
+    let kind_name = kind_node.as_scalar().unwrap().as_str().to_string();
+    let publish = match map.get_node("publish") {
+        None => true,
+        Some(Node::Scalar(s)) if s.as_str() == "true" => true,
+        Some(Node::Scalar(s)) if s.as_str() == "false" => false,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `publish` must be true or false"));
+            true
+        }
+    };
+    let time_limit_s = match map.get_node("time_limit") {
+        None => None,
+        Some(n) => match to_json(n).as_f64() {
+            Some(s) if s > 0.0 => Some(s),
+            _ => {
+                cx.err(cx.loc(n), format!("stage `{name}`: `time_limit` must be a positive number of seconds"));
+                None
+            }
+        },
+    };
+    let mut needs = Vec::new();
+    let mut need_locations = Vec::new();
+    match map.get_node("needs") {
+        None => {}
+        Some(Node::Sequence(seq)) => {
+            for n in seq.iter() {
+                match n {
+                    Node::Scalar(s) => {
+                        needs.push(s.as_str().to_string());
+                        need_locations.push(cx.loc(n));
+                    }
+                    _ => cx.err(cx.loc(n), format!("stage `{name}`: each entry of `needs` must be a stage name")),
+                }
+            }
+        }
+        Some(n) => cx.err(cx.loc(n), format!("stage `{name}`: `needs` must be a list of stage names")),
+    }
+    let Some(kind) = registry.get(&kind_name) else {
+        let known: Vec<_> = registry.names().collect();
+        let hint = suggestion(&kind_name, &known).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+        cx.err(
+            cx.loc(kind_node),
+            format!("stage `{name}`: unknown stage kind `{kind_name}`{hint}; known kinds: {}", known.join(", ")),
+        );
+        return None;
+    };
+    let empty;
+    let params_map = match map.get_node("params") {
+        None => {
+            empty = MarkedMappingNode::new_empty(*node.span());
+            &empty
+        }
+        Some(Node::Mapping(m)) => m,
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `params` must be a mapping of parameter names to values"));
+            return None;
+        }
+    };
+    cx.ranges_used.clear();
+    let (points, adaptive) = expand_points(cx, &name, params_map, kind.sweepable())?;
+    let ranges_from: Vec<String> = std::mem::take(&mut cx.ranges_used).into_iter().collect();
+    let mut checked = Vec::with_capacity(points.len());
+    let mut referenced: BTreeSet<(String, String)> = BTreeSet::new();
+    for p in points {
+        match kind.check(&p.value) {
+            Ok((canonical, refs)) => {
+                referenced.extend(refs);
+                checked.push(Point { params: canonical, label: p.label });
+            }
+            Err(errors) => {
+                for e in errors {
+                    let location = locate(cx, params_map, &p.swept_nodes, &e);
+                    let point =
+                        if p.label.is_empty() { String::new() } else { format!(" (at sweep point {})", p.label) };
+                    cx.err(location, format!("stage `{name}` ({kind_name}){point}: {}", describe(&e)));
+                }
+                // One point's structural errors repeat at every point: report them once.
+                return None;
+            }
+        }
+    }
+    for (path, stage) in referenced {
+        if !needs.contains(&stage) {
+            let location = locate(cx, params_map, &BTreeMap::new(), &FieldError::new(&path, ""));
+            cx.err(
+                location,
+                format!("stage `{name}`: `{path}` refers to stage `{stage}`, which is not in its `needs`"),
+            );
+        }
+    }
+    Some(ParsedStage {
+        stage: Stage {
+            name,
+            kind: kind_name,
+            needs,
+            points: checked,
+            adaptive,
+            ranges_from,
+            publish,
+            time_limit_s,
+            location: mapping_location(cx.file, map),
+        },
+        need_locations,
+    })
+}
+
+fn describe(e: &FieldError) -> String {
+    if e.path.is_empty() {
+        e.message.clone()
+    } else {
+        format!("parameter `{}`: {}", e.path, e.message)
+    }
+}
+
+/// Stage names become file names (`tables/<name>.parquet`, `figures/<name>.svg`): letters,
+/// digits, `_`, `-` and `.`, not starting with `.` or `-`, so a pipeline cannot write
+/// outside the output directories (no `/`, no `..`), nor hide or shadow files there.
+fn is_valid_name(s: &str) -> bool {
+    !s.is_empty()
+        && s.len() <= 100
+        && !s.starts_with(['.', '-'])
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+}
+
+/// The known name closest to `name`, if it is close (edit distance at most 3, and less
+/// than the length of `name`).
+fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
+    fn distance(a: &str, b: &str) -> usize {
+        let b: Vec<char> = b.chars().collect();
+        let mut prev: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut cur = vec![i + 1];
+            for (j, cb) in b.iter().enumerate() {
+                cur.push((prev[j] + usize::from(ca != *cb)).min(prev[j + 1] + 1).min(cur[j] + 1));
+            }
+            prev = cur;
+        }
+        prev[b.len()]
+    }
+    let limit = 3.min(name.chars().count().saturating_sub(1));
+    known.iter().map(|k| (distance(name, k), *k)).filter(|(d, _)| *d <= limit).min().map(|(_, k)| k)
+}
+
+/// The location of the deepest node on `err.path` (a swept parameter's node for this point).
+fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>, err: &FieldError) -> Location {
+    let segments = split_path(&err.path);
+    let params_node_loc = mapping_location(cx.file, params);
+    let Some((first, rest)) = segments.split_first() else {
+        return params_node_loc;
+    };
+    let mut node: &Node = match swept.get(first.as_str()) {
+        Some(n) => n,
+        None => match params.get_node(first) {
+            Some(n) => n,
+            None => {
+                // An unknown field is reported at its key; a missing one at the params mapping.
+                return params
+                    .keys()
+                    .find(|k| k.as_str() == first)
+                    .map_or(params_node_loc, |k| span_location(cx.file, k.span()));
+            }
+        },
+    };
+    let unknown_field = err.message.starts_with("unknown field");
+    if rest.is_empty() && unknown_field {
+        if let Some(k) = params.keys().find(|k| k.as_str() == first) {
+            return span_location(cx.file, k.span());
+        }
+    }
+    for (i, seg) in rest.iter().enumerate() {
+        if let (Node::Mapping(m), true) = (node, unknown_field && i + 1 == rest.len()) {
+            if let Some(k) = m.keys().find(|k| k.as_str() == seg) {
+                return span_location(cx.file, k.span());
+            }
+        }
+        let next = match (node, seg.parse::<usize>()) {
+            (Node::Sequence(s), Ok(i)) => s.get(i),
+            (Node::Mapping(m), _) => m.get_node(seg),
+            _ => None,
+        };
+        match next {
+            Some(n) => node = n,
+            None => break,
+        }
+    }
+    cx.loc(node)
+}
+
+/// `layers[0].from` -> [layers, 0, from].
+fn split_path(path: &str) -> Vec<String> {
+    path.split(['.', '[']).filter(|s| !s.is_empty()).map(|s| s.trim_end_matches(']').to_string()).collect()
+}
+
+fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
+    let mut index = BTreeMap::new();
+    for (i, s) in stages.iter().enumerate() {
+        if let Some(&j) = index.get(s.stage.name.as_str()) {
+            let first: &ParsedStage = &stages[j];
+            cx.err(
+                s.stage.location.clone(),
+                format!(
+                    "duplicate stage name `{}` (first defined at line {})",
+                    s.stage.name, first.stage.location.line
+                ),
+            );
+        } else {
+            index.insert(s.stage.name.as_str(), i);
+        }
+    }
+    let mut graph = petgraph::graphmap::DiGraphMap::<usize, ()>::new();
+    for i in 0..stages.len() {
+        graph.add_node(i);
+    }
+    for (i, s) in stages.iter().enumerate() {
+        for (need, loc) in s.stage.needs.iter().zip(&s.need_locations) {
+            match index.get(need.as_str()) {
+                Some(&j) => {
+                    graph.add_edge(j, i, ());
+                }
+                None => {
+                    let names: Vec<&str> = index.keys().copied().collect();
+                    let hint = suggestion(need, &names).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
+                    cx.err(loc.clone(), format!("stage `{}` needs `{need}`, which names no stage{hint}", s.stage.name));
+                }
+            }
+        }
+    }
+    for cycle in super::graph::cycles(&graph) {
+        let names: Vec<&str> = cycle.iter().map(|&i| stages[i].stage.name.as_str()).collect();
+        let first = cycle[0];
+        cx.err(
+            stages[first].stage.location.clone(),
+            format!("the stages form a cycle: {} -> {}", names.join(" -> "), names[0]),
+        );
+    }
+}

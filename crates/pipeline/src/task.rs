@@ -1,0 +1,76 @@
+//! Computing one task, wherever it runs (in this process or in a SLURM worker): the kind's
+//! computation with panics caught and held to its time limit, its table checked (no NaN or
+//! infinity reaches a table), and its entry stored in the cache atomically. A task that
+//! fails says how, as a [`TaskError`].
+
+use crate::cache::{Cache, Entry};
+use crate::key::Hash;
+use crate::kind::{DynKind, Inputs, Output, Registry, TimeLimitExceeded};
+use serde::{Deserialize, Serialize};
+use std::time::{Duration, Instant};
+
+/// How a task failed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, thiserror::Error)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum TaskError {
+    /// The kind's computation returned an error.
+    #[error("{message}")]
+    Failed { message: String },
+    /// The kind's computation panicked.
+    #[error("panicked: {message}")]
+    Panicked { message: String },
+    /// The computation was stopped at its time limit.
+    #[error("timed out: past its time limit of {limit_s} s (a stage's `time_limit`, or `repro run --time-limit`)")]
+    TimedOut { limit_s: f64 },
+    /// The table it returned is not one a stage may publish (NaN, infinity, ragged columns).
+    #[error("invalid output: {message}")]
+    InvalidOutput { message: String },
+    /// Computed, but its cache entry could not be written (a full disk, permissions).
+    #[error("writing the cache entry: {message}")]
+    NotStored { message: String },
+    /// A SLURM worker could not run it (task specification, version, inputs), or ended
+    /// without a result.
+    #[error("{message}")]
+    Worker { message: String },
+}
+
+/// Computes one task and stores its entry: the kind's run with panics caught, held to
+/// `limit` (`Registry::run_limited`), its table checked. Returns the output or how it
+/// failed, and the wall time. Shared by the local backend and the SLURM worker.
+pub fn compute_task(
+    registry: &Registry,
+    kind: &dyn DynKind,
+    key: &Hash,
+    params: &serde_json::Value,
+    inputs: &Inputs,
+    cache: &Cache,
+    limit: Option<Duration>,
+) -> (Result<Output, TaskError>, f64) {
+    crate::fault::point("task.start");
+    let t0 = Instant::now();
+    let res =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| registry.run_limited(kind, params, inputs, limit)));
+    let out = match res {
+        Ok(Ok(out)) => {
+            out.table.check().map(|_| out).map_err(|e| TaskError::InvalidOutput { message: format!("{e:#}") })
+        }
+        Ok(Err(e)) => Err(match e.downcast_ref::<TimeLimitExceeded>() {
+            Some(t) => TaskError::TimedOut { limit_s: t.0 },
+            None => TaskError::Failed { message: format!("{e:#}") },
+        }),
+        Err(panic) => Err(TaskError::Panicked {
+            message: panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default(),
+        }),
+    };
+    let dt = t0.elapsed().as_secs_f64();
+    let out = out.and_then(|o| {
+        let entry = Entry::new(key.clone(), kind.name(), kind.version(), params.clone(), o, dt);
+        cache.put(&entry).map_err(|e| TaskError::NotStored { message: format!("{e:#}") })?;
+        Ok(entry.output)
+    });
+    (out, dt)
+}

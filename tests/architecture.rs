@@ -1,0 +1,180 @@
+//! The architecture holds: the orchestrator crate knows no physics, the physics crate no
+//! serialisation, YAML, files or caches, and no crate's modules import each other in a
+//! cycle. Read from the manifests and the sources, so a change that breaks a layer fails
+//! here with the file that breaks it.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The names in the `[dependencies]` table of a crate's manifest.
+fn dependencies(manifest: &str) -> BTreeSet<String> {
+    let text = std::fs::read_to_string(manifest).unwrap();
+    let mut in_deps = false;
+    let mut names = BTreeSet::new();
+    for line in text.lines() {
+        let line = line.trim();
+        if line.starts_with('[') {
+            in_deps = line == "[dependencies]";
+            continue;
+        }
+        if in_deps && !line.is_empty() && !line.starts_with('#') {
+            let name = line.split(['=', '.', ' ']).next().unwrap().trim();
+            names.insert(name.to_string());
+        }
+    }
+    names
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// A file's code without comments and without its test module.
+fn code(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text.split("#[cfg(test)]").next().unwrap();
+    text.lines().map(|l| l.split("//").next().unwrap()).collect::<Vec<_>>().join("\n")
+}
+
+#[test]
+fn the_orchestrator_knows_no_physics_and_the_physics_no_files_or_serialisation() {
+    let pipeline = dependencies("crates/pipeline/Cargo.toml");
+    let physics = dependencies("crates/physics/Cargo.toml");
+    assert!(pipeline.contains("polars") && physics.contains("faer"), "{pipeline:?} {physics:?}");
+    for name in ["repro-physics", "faer", "realfft", "rustfft", "libm"] {
+        assert!(!pipeline.contains(name), "the orchestrator depends on `{name}`");
+    }
+    for name in ["repro-pipeline", "serde", "serde_json", "marked-yaml", "schemars", "polars", "blake3", "anyhow"] {
+        assert!(!physics.contains(name), "the physics depends on `{name}`");
+    }
+    let mut files = Vec::new();
+    rust_files(Path::new("crates/physics/src"), &mut files);
+    assert!(files.len() > 20);
+    for f in &files {
+        let c = code(f);
+        for io in ["std::fs", "std::io", "File::", "std::env", "std::process", "serde"] {
+            assert!(!c.contains(io), "{} uses `{io}`: the physics reads and writes no files", f.display());
+        }
+    }
+}
+
+/// The module of a source file under `root`: `a::b` for `a/b.rs` or `a/b/mod.rs`.
+fn module_of(root: &Path, file: &Path) -> Option<String> {
+    let rel = file.strip_prefix(root).unwrap().with_extension("");
+    let mut parts: Vec<String> = rel.iter().map(|s| s.to_string_lossy().to_string()).collect();
+    match parts.last().map(String::as_str) {
+        Some("lib" | "main") => return None,
+        Some("mod") => {
+            parts.pop();
+        }
+        _ => {}
+    }
+    Some(parts.join("::"))
+}
+
+/// The module paths a piece of code names after `prefix` (`crate::` or `super::`).
+fn named_after(code: &str, prefix: &str) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    for (i, _) in code.match_indices(prefix) {
+        let before = code[..i].chars().last();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let rest = &code[i + prefix.len()..];
+        let path: String = rest
+            .chars()
+            .take_while(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || *c == '_' || *c == ':')
+            .collect();
+        out.push(path.split("::").filter(|s| !s.is_empty()).map(str::to_string).collect());
+    }
+    out
+}
+
+/// The dependencies between the modules of a crate (`crate::x` and `super::x` paths),
+/// without those of a module on its own submodules or parents.
+fn module_graph(root: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let root = Path::new(root);
+    let mut files = Vec::new();
+    rust_files(root, &mut files);
+    let modules: BTreeMap<String, PathBuf> =
+        files.iter().filter_map(|f| Some((module_of(root, f)?, f.clone()))).collect();
+    let resolve = |base: &[String], path: &[String]| -> Option<String> {
+        (1..=path.len()).rev().map(|k| [base, &path[..k]].concat().join("::")).find(|m| modules.contains_key(m))
+    };
+    let mut graph = BTreeMap::new();
+    for (m, f) in &modules {
+        let c = code(f);
+        let segments: Vec<String> = m.split("::").map(str::to_string).collect();
+        let parent = &segments[..segments.len() - 1];
+        let mut deps = BTreeSet::new();
+        for p in named_after(&c, "crate::") {
+            deps.extend(resolve(&[], &p));
+        }
+        for p in named_after(&c, "super::") {
+            deps.extend(resolve(parent, &p));
+        }
+        deps.retain(|d| d != m && !d.starts_with(&format!("{m}::")) && !m.starts_with(&format!("{d}::")));
+        graph.insert(m.clone(), deps);
+    }
+    graph
+}
+
+/// A cycle of `graph`, if it has one.
+fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        g: &BTreeMap<String, BTreeSet<String>>,
+        v: &str,
+        state: &mut BTreeMap<String, u8>,
+        stack: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(v.to_string(), 1);
+        stack.push(v.to_string());
+        for w in g.get(v).into_iter().flatten() {
+            match state.get(w.as_str()) {
+                Some(1) => {
+                    let at = stack.iter().position(|s| s == w).unwrap();
+                    return Some(stack[at..].to_vec());
+                }
+                Some(_) => {}
+                None => {
+                    if let Some(c) = visit(g, w, state, stack) {
+                        return Some(c);
+                    }
+                }
+            }
+        }
+        stack.pop();
+        state.insert(v.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for v in graph.keys() {
+        if !state.contains_key(v.as_str()) {
+            if let Some(c) = visit(graph, v, &mut state, &mut Vec::new()) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn no_crate_s_modules_import_each_other_in_a_cycle() {
+    for root in ["crates/pipeline/src", "crates/physics/src", "src"] {
+        let g = module_graph(root);
+        assert!(g.len() > 5, "{root}: {g:?}");
+        assert_eq!(find_cycle(&g), None, "{root}: modules import each other in a cycle");
+    }
+    // The check sees a cycle where there is one.
+    let mut g = module_graph("crates/pipeline/src");
+    assert!(g["executor"].contains("plan") && g["plan"].contains("cache"), "{g:?}");
+    g.get_mut("cache").unwrap().insert("executor".into());
+    assert!(find_cycle(&g).is_some());
+}
