@@ -8,7 +8,7 @@
 // `!(x > 0.0)` is how the checks say "not positive, or NaN": keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub use physics::{bem, fem, numerics, rheology, theory};
+pub use physics::{bem, fem, lennard_jones, numerics, rheology, theory};
 pub use pipeline;
 
 pub mod reproduction_report;

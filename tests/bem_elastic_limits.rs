@@ -9,8 +9,9 @@
 mod common;
 use common::{column, Scratch};
 
-use repro::bem::branch::pull_off;
-use repro::bem::solver::{jkr_half_width, jkr_pull_off, solve, starting_mesh, Mesh, Params, Solution};
+use repro::bem::solver::branch::pull_off;
+use repro::bem::solver::{solve, starting_mesh, Mesh, Params, Solution};
+use repro::theory::line_contact::{jkr_half_width, jkr_pull_off};
 use repro::theory::line_contact::{lj_rigid_pull_off_coefficient, maugis_dugdale_line_pull_off};
 
 fn solved(lambda: f64, w: f64, k: f64, v0: f64, mesh: Mesh) -> Solution {
@@ -46,7 +47,7 @@ fn high_speed_is_the_instantaneous_half_plane() {
     assert!(fast.friction().mu_star.abs() < 1e-3, "{:?}", fast.friction());
 }
 
-// ---- Pull-off, walked under approach control (`bem::branch`). ----
+// ---- Pull-off, walked under approach control (`bem::solver::branch`). ----
 
 fn pull_off_at(lambda: f64, k: f64, v0: f64, n: Option<usize>) -> f64 {
     let p = Params::sls(lambda, 0.1, k, v0);

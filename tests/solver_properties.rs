@@ -93,7 +93,7 @@ proptest! {
         let s2 = classical::maugis_pull_off(lambda * 1.01).unwrap();
         prop_assert!((s2.load - s.load).abs() < 1e-2 * s.load.abs(), "{s:?} {s2:?}");
         let l = maugis_dugdale_line_pull_off(lambda).unwrap();
-        let jkr = repro::bem::solver::jkr_pull_off();
+        let jkr = repro::theory::line_contact::jkr_pull_off();
         prop_assert!(l.load >= jkr - 1e-9 && l.load <= zero_width_limit(lambda), "{l:?} (JKR {jkr})");
         prop_assert!(l.error.is_finite() && l.error < 1e-10 && (l.radius == 0.0 || l.radius > 1.0001e-6), "{l:?}");
         let l2 = maugis_dugdale_line_pull_off(lambda * 1.01).unwrap();
@@ -185,7 +185,7 @@ proptest! {
     /// (V0 -> 0) it is no stronger than JKR's -1.744 (the Lennard-Jones range softens it).
     #[test]
     fn pull_off_and_descent_agree_at_the_pull_off(ll in -0.5f64..0.5, lk in -1.3f64..-0.3) {
-        use repro::bem::branch::{descend_to_load, pull_off};
+        use repro::bem::solver::branch::{descend_to_load, pull_off};
         let p = Params::sls(10f64.powf(ll), 1.0, 10f64.powf(lk), 1e-6);
         // Lambda up to 3.2: above about 2 the descent to 95 % of the pull-off by load control
         // from the interpolated guess fails next to the ripples of the discrete crack front,
@@ -195,7 +195,7 @@ proptest! {
         prop_assert!(start.converged);
         let po = pull_off(&start, 1e-4);
         prop_assert!(po.converged && po.load < 0.0 && po.load.is_finite(), "pull-off {}", po.load);
-        prop_assert!(po.load >= repro::bem::solver::jkr_pull_off() - 1e-3, "{} beyond JKR", po.load);
+        prop_assert!(po.load >= repro::theory::line_contact::jkr_pull_off() - 1e-3, "{} beyond JKR", po.load);
         let inside = descend_to_load(&start, 0.95 * po.load);
         prop_assert!(inside.converged && (inside.load() - 0.95 * po.load).abs() < 1e-6, "{}", inside.load());
         let beyond = descend_to_load(&start, 1.05 * po.load);
@@ -211,7 +211,7 @@ proptest! {
 /// load, and past the pull-off report a not-converged record.
 #[test]
 fn the_descent_reaches_95_percent_of_the_pull_off_at_large_lambda() {
-    use repro::bem::branch::{descend_to_load, pull_off};
+    use repro::bem::solver::branch::{descend_to_load, pull_off};
     use repro::bem::solver::starting_mesh;
     let cases = [(2.19, 0.5, None), (2.63, 0.103, Some(600))];
     for (lambda, k, n) in cases {

@@ -51,13 +51,23 @@ pub fn registry() -> Registry {
     r
 }
 
-/// A value for a table: the value when finite, else 0 (tables never hold NaN or infinity;
-/// the row's `converged` column says whether to trust it).
+/// The one policy for non-finite numbers (tables never hold NaN or infinity): a value
+/// becomes 0, and the row's `converged` column says whether to trust it.
 pub(crate) fn finite(x: f64) -> f64 {
     if x.is_finite() {
         x
     } else {
         0.0
+    }
+}
+
+/// The same policy for an error bound or a residual: one that is infinite or NaN says
+/// "unbounded" and is published as f64::MAX, never as 0 (which would read as exact).
+pub(crate) fn bound(e: f64) -> f64 {
+    if e.is_finite() {
+        e
+    } else {
+        f64::MAX
     }
 }
 

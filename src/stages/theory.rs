@@ -1,8 +1,8 @@
 //! Stage kinds for the closed-form theories: classical sphere contact (Hertz, JKR, DMT,
 //! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
 
-use super::check;
 use super::material::with_material_fields;
+use super::{bound, check};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use crate::theory::{classical, line_contact, persson, persson_brener};
@@ -79,7 +79,7 @@ impl Kind for MaugisDugdale {
             let Some(pt) = classical::maugis_dugdale(a, p.lambda) else {
                 bail!("no Maugis-Dugdale solution at A = {a}, lambda = {}", p.lambda)
             };
-            for (c, v) in cols.iter_mut().zip([a, pt.load, pt.approach, pt.m, finite(pt.load_error)]) {
+            for (c, v) in cols.iter_mut().zip([a, pt.load, pt.approach, pt.m, bound(pt.load_error)]) {
                 c.push(v);
             }
         }
@@ -124,7 +124,7 @@ impl Kind for MaugisPullOff {
             .with_f64("lambda", vec![p.lambda])
             .with_f64("P_bar_pulloff", vec![po.load])
             .with_f64("A_bar_pulloff", vec![po.radius])
-            .with_f64("error_estimate", vec![finite(po.error)])
+            .with_f64("error_estimate", vec![bound(po.error)])
             .with_f64("P_bar_jkr", vec![classical::JKR_PULL_OFF])
             .with_f64("P_bar_dmt", vec![classical::DMT_PULL_OFF])
             .into())
@@ -153,8 +153,8 @@ impl Kind for LinePullOff {
             .with_f64("lambda", vec![p.lambda])
             .with_f64("W_md", vec![po.load])
             .with_f64("A_md", vec![po.radius])
-            .with_f64("error_estimate", vec![finite(po.error)])
-            .with_f64("W_jkr", vec![crate::bem::solver::jkr_pull_off()])
+            .with_f64("error_estimate", vec![bound(po.error)])
+            .with_f64("W_jkr", vec![crate::theory::line_contact::jkr_pull_off()])
             .with_f64("W_rigid_lj", vec![-line_contact::lj_rigid_pull_off_coefficient() * p.lambda.sqrt()])
             .into())
     }
@@ -392,7 +392,7 @@ impl Kind for PerssonBrener {
             .with_f64("V_PB", vec![p.V_PB])
             .with_f64("G_trail_over_dgamma", vec![g])
             .with_f64("F_T_PB", vec![f])
-            .with_f64("error_estimate", vec![finite(f_error)]);
+            .with_f64("error_estimate", vec![bound(f_error)]);
         let t = match p.s {
             _ if m.is_sls() => t,
             Some(s) => t
@@ -403,12 +403,6 @@ impl Kind for PerssonBrener {
         };
         Ok(t.into())
     }
-}
-
-/// An error bound as a table value: an infinite bound (a root where the residual is flat
-/// to rounding) is published as f64::MAX, never as infinity.
-fn finite(e: f64) -> f64 {
-    e.min(f64::MAX)
 }
 
 #[derive(Serialize, Deserialize, JsonSchema)]
@@ -432,7 +426,7 @@ fn default_z_max() -> f64 {
     4.0
 }
 
-/// The Lennard-Jones 3-9 law the BEM solves with (`bem::traction`; the shell's is the same law
+/// The Lennard-Jones 3-9 law the BEM solves with (`lennard_jones`; the shell's is the same law
 /// shifted by g0, `fem::adhesion`): energy and disjoining pressure against separation.
 pub struct LennardJones;
 
@@ -454,7 +448,7 @@ impl Kind for LennardJones {
     }
 
     fn run(p: &LennardJonesParams, _: &Inputs) -> Result<Output> {
-        use crate::bem::traction::{energy, pressure, ALPHA};
+        use crate::lennard_jones::{energy, pressure, ALPHA};
         let z: Vec<f64> = (0..p.n).map(|i| p.z_min + (p.z_max - p.z_min) * i as f64 / (p.n - 1) as f64).collect();
         // The solver's pressure at lambda = 1: h/eps = 1 + alpha H.
         let sigma: Vec<f64> = z.iter().map(|&z| pressure((z - 1.0) / ALPHA, 1.0).0).collect();

@@ -11,6 +11,7 @@
 //!   half-plane (Chapters 4-5).
 //! - [`fem`]: the axisymmetric hyperelastic shell pressed by an adhesive, frictional plate
 //!   (Chapter 3).
+//! - [`lennard_jones`]: the 3-9 interface law both models use.
 //! - [`numerics`]: quadrature, root finding, GMRES, banded and Toeplitz solvers, fits, and
 //!   the time budget the long solvers check.
 
@@ -19,6 +20,7 @@
 
 pub mod bem;
 pub mod fem;
+pub mod lennard_jones;
 pub mod numerics;
 pub mod rheology;
 pub mod theory;

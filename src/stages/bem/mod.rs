@@ -8,7 +8,7 @@ use super::material::with_material_fields;
 use crate::bem::solver::{self, Mesh, Params, Solution};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::finite;
+use crate::stages::{bound, finite};
 use anyhow::Result;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -188,8 +188,8 @@ impl Kind for BemSweep {
             .with_f64("p_min_bar", vec![p_min])
             .with("converged", ColumnData::Bool(vec![ok]))
             .with("iterations", ColumnData::I64(vec![s.iterations as i64]))
-            .with_f64("residual", vec![if s.residual.is_finite() { s.residual } else { f64::MAX }])
-            .with_f64("error_estimate", vec![if estimate.is_finite() { estimate } else { f64::MAX }])
+            .with_f64("residual", vec![bound(s.residual)])
+            .with_f64("error_estimate", vec![bound(estimate)])
             .with("n", ColumnData::I64(vec![s.mesh.n as i64]))
             .with_f64("half_length", vec![s.mesh.half_length])
             // Elements per cohesive zone (`solver::zone_elements`), a meshing diagnostic.

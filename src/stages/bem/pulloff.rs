@@ -1,7 +1,7 @@
 //! Stage kind `bem.pulloff`: the pull-off load of the Chapter 4/5 model at one speed
-//! (`bem::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
+//! (`bem::solver::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
 
-use crate::bem::branch::{pull_off, PullOff};
+use crate::bem::solver::branch::{pull_off, PullOff};
 use crate::bem::solver::{self, ErrorShares, Mesh, Params};
 use crate::pipeline::kind::{Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};

@@ -1,9 +1,7 @@
 //! Boundary element model of a rigid cylinder sliding on an adhesive standard-linear-solid
 //! half-plane (thesis Chapter 4).
 
-pub mod branch;
 pub mod expint;
 pub mod kernel;
 pub mod maxima;
 pub mod solver;
-pub mod traction;

@@ -27,6 +27,7 @@
 
 use super::mesh::ShellMesh;
 use super::system::TangentSink;
+use crate::lennard_jones::{shifted_potential, Potential as Law};
 use std::f64::consts::PI;
 
 /// Gauss-Legendre points per outer edge for the adhesive energy.
@@ -63,14 +64,6 @@ pub struct Adhesion {
     pub g0: f64,
 }
 
-/// Energy per plate area and its first two derivatives in g'.
-#[derive(Clone, Copy, Debug)]
-struct Law {
-    phi: f64,
-    d1: f64,
-    d2: f64,
-}
-
 impl Adhesion {
     /// The traction p(g') of Eq. 3.3 (negative: tension), zero for g' <= 0.
     pub fn traction(&self, g: f64) -> f64 {
@@ -82,22 +75,9 @@ impl Adhesion {
         16.0 * self.gamma / (9.0 * 3f64.sqrt() * self.g0)
     }
 
-    /// phi(g') and its derivatives; `lifting`: for g' <= 0, the curvature of the g' > 0
-    /// side (the stiffness against lifting off).
+    /// phi(g') and its derivatives (`lennard_jones::shifted_potential`).
     fn law(&self, g: f64, lifting: bool) -> Law {
-        let c = 8.0 * self.gamma / 3.0;
-        if g <= 0.0 {
-            let d2 = if lifting { 16.0 * self.gamma / (self.g0 * self.g0) } else { 0.0 };
-            return Law { phi: -self.gamma, d1: 0.0, d2 };
-        }
-        let x = self.g0 / (g + self.g0);
-        let (x2, x4) = (x * x, x.powi(4));
-        let x8 = x4 * x4;
-        Law {
-            phi: -c * (0.5 * x2 - 0.125 * x8),
-            d1: c / self.g0 * (x2 * x - x8 * x),
-            d2: 3.0 * c / (self.g0 * self.g0) * (3.0 * x8 * x2 - x4),
-        }
+        shifted_potential(self.gamma, self.g0, g, lifting)
     }
 
     /// Adds dU/du to `residual`, d2U/du2 to `triplets` and d(dU/du)/d delta to `q` (all on

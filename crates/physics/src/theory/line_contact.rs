@@ -1,6 +1,6 @@
 //! Adhesive line contact of a rigid cylinder on an elastic half-plane: the limits the
 //! Chapter 4 model tends to at very low and very high speed (thesis Section 4.3; the JKR
-//! line contact itself is `bem::solver::jkr_half_width`).
+//! line contact itself is `jkr_half_width`, `jkr_pull_off`).
 //!
 //! Units of Chapter 4 (Eq. 4.6): beta = (dgamma R^2/E*)^(1/3), X = x/beta, A = a/beta,
 //! P = p/sigma0, H = h R/beta^2, W = w R/(E* beta^2) = w/(E* R dgamma^2)^(1/3), and the
@@ -23,7 +23,7 @@
 //! so the pull-off is -kappa sqrt(lambda) with kappa = sqrt(2/alpha) |min_d I(d)| = 2.434
 //! (Dugdale: 2 sqrt 2 = 2.828; the ratio 0.861 is the shape factor between the two laws).
 
-use crate::bem::traction::{self, ALPHA};
+use crate::lennard_jones::{self, ALPHA};
 use crate::numerics::quad::integrate_panels;
 use crate::numerics::roots::{bisect_root, maximize, rounding_of};
 use crate::theory::classical::{least_load, PullOff};
@@ -96,7 +96,7 @@ pub fn zero_width_limit(lambda: f64) -> f64 {
 /// I(d) = Int_0^inf 2 P(t^2 - d) dt for the Lennard-Jones law (lambda = 1/alpha, so that
 /// z = 1 + t^2 - d).
 fn rigid_integral(d: f64) -> f64 {
-    let f = |t: f64| 2.0 * traction::pressure(t * t - d, 1.0 / ALPHA).0;
+    let f = |t: f64| 2.0 * lennard_jones::pressure(t * t - d, 1.0 / ALPHA).0;
     integrate_panels(&f, &[0.0, 0.5, 1.0, 2.0, 5.0, 20.0, 200.0, 1e4], 1e-12).0
 }
 
@@ -105,6 +105,23 @@ pub fn lj_rigid_pull_off_coefficient() -> f64 {
     // The most tensile approach lies at negative d (surfaces apart): measured d = -0.1009.
     let (_, neg) = maximize(|d| -rigid_integral(d), -0.6, 0.3, 19, 1e-9);
     (2.0 / ALPHA).sqrt() * neg
+}
+
+/// The JKR half-width of the 2D line contact for load W (relaxed modulus), from
+/// W = (pi/4) A^2 - sqrt(2 pi A) on its stable branch; None below the pull-off
+/// -3 (pi/16)^(1/3).
+pub fn jkr_half_width(w: f64) -> Option<f64> {
+    let load = |a: f64| PI / 4.0 * a * a - (2.0 * PI * a).sqrt();
+    let a_po = (2.0 / PI).powf(1.0 / 3.0);
+    if w < load(a_po) {
+        return None;
+    }
+    crate::numerics::roots::bisect(|a| load(a) - w, a_po, 10.0 + 4.0 * w.abs().sqrt(), 1e-13)
+}
+
+/// The 2D JKR pull-off load, -3 (pi/16)^(1/3) (load control, relaxed modulus).
+pub fn jkr_pull_off() -> f64 {
+    -3.0 * (PI / 16.0).powf(1.0 / 3.0)
 }
 
 #[cfg(test)]

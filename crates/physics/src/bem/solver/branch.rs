@@ -20,8 +20,11 @@
 //!
 //! The speed V = v tau/beta is held fixed along the walk.
 
-use super::solver::{Control, PathSolver, Solution, TOLERANCE};
-use super::traction;
+use super::newton::PathSolver;
+use super::params::TOLERANCE;
+use super::solution::Solution;
+use super::system::Control;
+use crate::lennard_jones;
 use crate::numerics::roots::golden_section_max;
 
 /// Largest relative change of the adhered half-width between accepted neighbours.
@@ -109,7 +112,7 @@ impl Walk {
                     let safe = h
                         .iter()
                         .zip(&cur.h)
-                        .all(|(&hp, &h1)| traction::z_of(hp, lambda) > 0.3 * traction::z_of(h1, lambda));
+                        .all(|(&hp, &h1)| lennard_jones::z_of(hp, lambda) > 0.3 * lennard_jones::z_of(h1, lambda));
                     (t, safe.then_some(h), cur.delta + r * (cur.delta - prev.delta))
                 }
             };

@@ -1,4 +1,8 @@
-//! The Lennard-Jones 3-9 traction-gap law of Chapter 4 (ERRATA items 1, 8).
+//! The Lennard-Jones 3-9 law of the interface, used by the boundary element model of
+//! Chapters 4-5 (`bem`, in its units) and by the shell of Chapter 3 (`fem::adhesion`, in
+//! the shell's), and drawn in Fig. 2.3.
+//!
+//! Chapter 4 (ERRATA items 1, 8):
 //!
 //! sigma(h) = (8 dgamma / 3 eps) [(eps/h)^9 - (eps/h)^3], compression positive, with
 //! dgamma = alpha sigma0 eps, alpha = 9 sqrt(3)/16. In the units of Eq. 4.6 (P = p/sigma0,
@@ -42,6 +46,37 @@ pub fn gap_for_pressure(p: f64, lambda: f64) -> f64 {
     // P(z) = C (z^-9 - z^-3) decreases from +inf to 0 on (0, 1].
     let z = crate::numerics::roots::bisect(|z: f64| C * (z.powi(-9) - z.powi(-3)) - p, 1e-3, 1.0, 1e-15).unwrap_or(1.0);
     (z - 1.0) / (ALPHA * lambda)
+}
+
+/// The interaction energy per unit area as the shell's interface law uses it (Eq. 3.3:
+/// the gap g' shifted by the equilibrium distance g0, so that g' = 0 touches), with its
+/// first two derivatives in g': for g' > 0, with x = g0 / (g' + g0) = 1/z,
+///   phi(g') = -(8 dgamma / 3) [x^2 / 2 - x^8 / 8],
+/// the `energy` above in units of dgamma; phi = -dgamma for g' <= 0, where the penalty
+/// contact carries the compression. `lifting`: for g' <= 0, the curvature of the g' > 0
+/// side, 16 dgamma / g0^2 (the stiffness against lifting a touching point off).
+pub fn shifted_potential(gamma: f64, g0: f64, g: f64, lifting: bool) -> Potential {
+    let c = 8.0 * gamma / 3.0;
+    if g <= 0.0 {
+        let d2 = if lifting { 16.0 * gamma / (g0 * g0) } else { 0.0 };
+        return Potential { phi: -gamma, d1: 0.0, d2 };
+    }
+    let x = g0 / (g + g0);
+    let (x2, x4) = (x * x, x.powi(4));
+    let x8 = x4 * x4;
+    Potential {
+        phi: -c * (0.5 * x2 - 0.125 * x8),
+        d1: c / g0 * (x2 * x - x8 * x),
+        d2: 3.0 * c / (g0 * g0) * (3.0 * x8 * x2 - x4),
+    }
+}
+
+/// An energy per unit area and its first two derivatives in the gap.
+#[derive(Clone, Copy, Debug)]
+pub struct Potential {
+    pub phi: f64,
+    pub d1: f64,
+    pub d2: f64,
 }
 
 #[cfg(test)]

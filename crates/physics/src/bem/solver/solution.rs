@@ -1,0 +1,97 @@
+//! A solved point: pressures, gaps and displacements on the mesh, how Newton ended, and the
+//! friction (Eq. 4.16 with the prefactor of ERRATA 3) evaluated exactly for piecewise-
+//! constant pressure, split into its adhesive and compressive parts.
+
+use super::params::{Mesh, Params};
+use crate::lennard_jones::ALPHA;
+use std::f64::consts::PI;
+
+/// A solved (or not) point with its fields.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    pub params: Params,
+    pub mesh: Mesh,
+    pub x: Vec<f64>,
+    pub h: Vec<f64>,
+    pub p: Vec<f64>,
+    pub u: Vec<f64>,
+    /// U at the n + 1 element edges.
+    pub u_edges: Vec<f64>,
+    pub delta: f64,
+    pub converged: bool,
+    /// Newton iterations over the whole continuation path.
+    pub iterations: usize,
+    /// LU factorisations of the Jacobian (the rest of the linear solves are GMRES).
+    pub factorizations: usize,
+    pub residual: f64,
+}
+
+/// Friction and its parts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    pub mu_star: f64,
+    pub mu_adh: f64,
+    pub mu_comp: f64,
+}
+
+impl Solution {
+    pub fn friction(&self) -> Friction {
+        let pre = PI.sqrt() / 2.0 * self.params.lambda / self.params.w.abs().powf(1.5);
+        let (mut adh, mut comp) = (0.0, 0.0);
+        for j in 0..self.p.len() {
+            let term = self.p[j] * (self.u_edges[j + 1] - self.u_edges[j]);
+            if self.p[j] < 0.0 {
+                adh += term;
+            } else {
+                comp += term;
+            }
+        }
+        Friction { mu_star: pre * (adh + comp), mu_adh: pre * adh, mu_comp: pre * comp }
+    }
+
+    /// Leading (left) and trailing (right) edges of the compressive zone, interpolated
+    /// where P changes sign; None if no element is in compression.
+    pub fn contact_edges(&self) -> Option<(f64, f64)> {
+        let first = self.p.iter().position(|&p| p > 0.0)?;
+        let last = self.p.iter().rposition(|&p| p > 0.0)?;
+        let cross = |i: usize, j: usize| {
+            let (pi, pj) = (self.p[i], self.p[j]);
+            self.x[i] + (self.x[j] - self.x[i]) * pi / (pi - pj)
+        };
+        let lead = if first == 0 { self.x[0] } else { cross(first - 1, first) };
+        let trail = if last + 1 == self.p.len() { self.x[last] } else { cross(last, last + 1) };
+        Some((lead, trail))
+    }
+
+    /// Half-width of the region where the surfaces are closer than the separation of
+    /// peak Lennard-Jones tension, H_c = (3^(1/6) - 1)/(alpha lambda): the contact in the
+    /// JKR sense (the P > 0 width is not: in 2D the JKR pressure turns tensile inside the
+    /// contact, ERRATA 19), with the crossings interpolated between nodes. None if no node
+    /// is that close.
+    pub fn adhered_half_width(&self) -> Option<f64> {
+        let hc = (3f64.powf(1.0 / 6.0) - 1.0) / (ALPHA * self.params.lambda);
+        let first = self.h.iter().position(|&h| h <= hc)?;
+        let last = self.h.iter().rposition(|&h| h <= hc)?;
+        // The crossings of H = hc, interpolated linearly between nodes (the domain edge if
+        // the first or last node is already inside).
+        let a = self.mesh.a();
+        let cross = |i: usize, j: usize| {
+            let t = (self.h[i] - hc) / (self.h[i] - self.h[j]);
+            self.x[i] + t * (self.x[j] - self.x[i])
+        };
+        let left = if first == 0 { self.x[0] - a } else { cross(first - 1, first) };
+        let right = if last + 1 == self.h.len() { self.x[last] + a } else { cross(last + 1, last) };
+        Some(0.5 * (right - left))
+    }
+
+    /// The approach measured from the domain edges, Delta - (U(X_0) + U(X_n-1))/2: the
+    /// quantity `Control::approach` imposes.
+    pub fn approach(&self) -> f64 {
+        self.delta - 0.5 * (self.u[0] + self.u[self.u.len() - 1])
+    }
+
+    /// lambda Int P dX: the load actually carried (equals W when converged).
+    pub fn load(&self) -> f64 {
+        self.params.lambda * 2.0 * self.mesh.a() * self.p.iter().sum::<f64>()
+    }
+}

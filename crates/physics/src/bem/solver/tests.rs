@@ -1,0 +1,194 @@
+use super::continuation::*;
+use super::params::*;
+use super::precondition::*;
+use super::refinement::*;
+use super::system::*;
+use crate::numerics::gmres::gmres;
+use crate::theory::line_contact::{jkr_half_width, jkr_pull_off};
+use std::f64::consts::PI;
+
+#[test]
+fn jkr_line_contact_formulas() {
+    // Pull-off -3 (pi/16)^(1/3) = -1.7438, at A = (2/pi)^(1/3); Hertz at large load.
+    assert!((jkr_pull_off() + 1.743_671_027).abs() < 1e-8);
+    // The same from the minimum of W(A) = (pi/4) A^2 - sqrt(2 pi A).
+    let (_, max_neg) =
+        crate::numerics::roots::maximize(|a| -(PI / 4.0 * a * a - (2.0 * PI * a).sqrt()), 0.1, 3.0, 50, 1e-12);
+    assert!((-max_neg - jkr_pull_off()).abs() < 1e-10);
+    assert!(jkr_half_width(-1.8).is_none());
+    let a = jkr_half_width(1000.0).unwrap();
+    let hertz = Params::sls(1.0, 1000.0, 0.1, 1.0).a0();
+    assert!((a / hertz - 1.0).abs() < 0.03, "{a} {hertz}");
+}
+
+#[test]
+fn jacobian_matches_finite_differences() {
+    let params = Params::sls(1.3, 0.7, 0.1, 1.0);
+    let mesh = Mesh { n: 40, half_length: 4.0 };
+    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
+    let arc = Control::Path { t_approach: -0.6, t_load: 0.8, value: 0.1 };
+    for control in [Control::Load(params.w), Control::approach(0.2), arc] {
+        let sys = System::new(&op, control);
+        let h: Vec<f64> = (0..40).map(|i| 0.3 * ((i as f64) * 0.7).sin() + 0.2).collect();
+        let delta = 0.4;
+        let ev = sys.eval(&h, delta);
+        let jac = sys.jacobian(&ev.dp);
+        let eps = 1e-6;
+        for j in [0, 7, 20, 39, 40] {
+            let (mut hp, mut dpl) = (h.clone(), delta);
+            if j < 40 {
+                hp[j] += eps;
+            } else {
+                dpl += eps;
+            }
+            let ev2 = sys.eval(&hp, dpl);
+            for i in 0..=40 {
+                let fd = (ev2.r[i] - ev.r[i]) / eps;
+                assert!(
+                    (fd - jac[(i, j)]).abs() < 1e-4 * (1.0 + fd.abs()),
+                    "{control:?} ({i},{j}): {fd} vs {}",
+                    jac[(i, j)]
+                );
+            }
+        }
+        // The matrix-free product and the preconditioner without dropping agree with it.
+        let v: Vec<f64> = (0..=40).map(|i| ((i as f64) * 0.37).cos()).collect();
+        let jv = sys.apply_jacobian(&ev.dp, &v);
+        let exact = ActiveLu::new(&sys, &ev.dp, 0.0).solve(&jv);
+        for i in 0..=40 {
+            let dense: f64 = (0..=40).map(|j| jac[(i, j)] * v[j]).sum();
+            assert!((dense - jv[i]).abs() < 1e-10, "{control:?} row {i}");
+            assert!((exact[i] - v[i]).abs() < 1e-8, "{control:?} inverse, row {i}");
+        }
+    }
+}
+
+#[test]
+fn the_active_set_preconditioner_is_exact_without_dropping_and_close_with_it() {
+    // A converged state at lambda = 3, W = 0.1: the far-field columns are tiny.
+    let params = Params::sls(3.0, 0.1, 0.1, 1.0);
+    let mesh = Mesh { n: 600, half_length: 6.0 };
+    let s = solve(&params, mesh);
+    assert!(s.converged);
+    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
+    let sys = System::new(&op, Control::Load(params.w));
+    let ev = sys.eval(&s.h, s.delta);
+    let rhs: Vec<f64> = (0..=mesh.n).map(|i| ((i as f64) * 0.37).sin()).collect();
+    let resid = |d: &[f64]| {
+        let jd = sys.apply_jacobian(&ev.dp, d);
+        jd.iter().zip(&rhs).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
+    };
+    let exact = ActiveLu::new(&sys, &ev.dp, 0.0);
+    assert_eq!(exact.idx.len(), mesh.n);
+    assert!(resid(&exact.solve(&rhs)) < 1e-10);
+    let dropped = ActiveLu::new(&sys, &ev.dp, DROP);
+    assert!(dropped.idx.len() < mesh.n * 3 / 4, "active {} of {}", dropped.idx.len(), mesh.n);
+    let r = resid(&dropped.solve(&rhs));
+    assert!(r > 1e-12 && r < 1.0, "an approximate inverse: residual {r} (measured 0.62)");
+    let g = gmres(|v| sys.apply_jacobian(&ev.dp, v), |v| dropped.solve(v), &rhs, 1e-10, GMRES_ITERATIONS);
+    assert!(g.converged && g.iterations <= 12, "GMRES: {} iterations", g.iterations);
+    assert!(resid(&g.x) < 1e-9);
+}
+
+#[test]
+fn large_load_friction_approaches_persson_hunter() {
+    // Adhesion negligible at W = 100 (the thesis: the adhesionless limit is reached
+    // near W = 100). Persson's approximation assumes a Hertzian pressure; the BEM
+    // solves the asymmetric one: the BEM curve is Persson's shifted to slightly higher
+    // speed (measured: -0.5% at V0 = 0.1, -6.1% at 0.56, +3.1% at 1.78, +0.2% at 10),
+    // and the BEM maximum, about 0.483 near V0 = 1.3, is the thesis' "about 0.48"
+    // at k = 0.1.
+    let mesh = Mesh { n: 400, half_length: 28.0 };
+    for (v0, bem_expected) in [(0.1, 0.0858), (1.3, 0.4829), (10.0, 0.1709)] {
+        let params = Params::sls(0.5, 100.0, 0.1, v0);
+        let s = solve(&params, mesh);
+        assert!(s.converged, "V0 = {v0}: residual {}", s.residual);
+        let f = s.friction();
+        let persson = crate::theory::persson::mu_star(0.1, v0, 1e-8).mu_star;
+        assert!((f.mu_star / persson - 1.0).abs() < 0.05, "V0 = {v0}: {} vs Persson {persson}", f.mu_star);
+        assert!((f.mu_star - bem_expected).abs() < 2e-3, "V0 = {v0}: {}", f.mu_star);
+        // Adhesive hysteresis is small here (measured: 2% of mu* at V0 = 0.1, where
+        // friction itself is small; 0.1% at V0 = 1.3).
+        assert!(f.mu_adh.abs() < 0.05 * f.mu_star, "adhesion negligible: {:?}", f);
+    }
+}
+
+#[test]
+fn elastic_point_converges_and_carries_its_load() {
+    let params = Params::sls(1.0, 1.0, 0.1, 0.0);
+    let mesh = Mesh { n: 200, half_length: 6.0 };
+    let s = solve(&params, mesh);
+    assert!(s.converged, "residual {} after {}", s.residual, s.iterations);
+    assert!((s.load() - 1.0).abs() < 1e-6);
+    // Elastic and symmetric: no friction.
+    assert!(s.friction().mu_star.abs() < 1e-8, "{:?}", s.friction());
+    let (lead, trail) = s.contact_edges().unwrap();
+    assert!((lead + trail).abs() < 1e-6, "{lead} {trail}");
+}
+
+#[test]
+fn newton_stops_at_the_requested_tolerance() {
+    // A sliding adhesive point: the default tolerance takes more iterations to a smaller
+    // residual; a looser one stops as soon as the residual is under it, with mu* close and
+    // the load balanced to that tolerance. How close depends on where Newton's path
+    // crosses the tolerance, not only on the tolerance: measured relative errors of mu*
+    // (no LU rebuild -> `REBUILD_BALANCE`): at newton_tol 1e-3 1.2e-5 -> 2.1e-4 (one
+    // iteration fewer, residual 1.3e-4 -> 4.0e-4; the bench's points show up to 2.2e-4),
+    // at 1e-5 1.1e-6 -> 3.8e-9. This test asserted 1e-4 at 1e-3 before the rebuild rule;
+    // it now asserts 5e-4 there, and 1e-5 at 1e-5.
+    let mesh = Mesh { n: 300, half_length: 6.0 };
+    let tight = solve(&Params::sls(1.0, 1.0, 0.1, 1.0), mesh);
+    assert!(tight.converged && tight.residual <= TOLERANCE, "{}", tight.residual);
+    let a = tight.friction().mu_star;
+    for (newton_tol, mu_tol) in [(1e-3, 5e-4), (1e-5, 1e-5)] {
+        let loose = solve(&Params { newton_tol, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
+        assert!(loose.converged && loose.residual <= newton_tol && loose.residual > TOLERANCE, "{}", loose.residual);
+        assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
+        let b = loose.friction().mu_star;
+        assert!((a - b).abs() < mu_tol * a, "{a} vs {b} at newton_tol {newton_tol}");
+        assert!((loose.load() - 1.0).abs() <= newton_tol, "load {}", loose.load());
+    }
+}
+
+#[test]
+fn a_refinement_is_preconditioned_by_the_coarse_meshs_lu() {
+    // From a converged coarse solution, Newton on the mesh with twice the elements runs on
+    // the two-grid preconditioner: one LU (of the coarse Jacobian) in all, none of the
+    // fine one, and the same equilibrium as Newton on the fine LU.
+    let params = Params::sls(3.0, 0.1, 0.1, 1e-2);
+    let coarse = solve(&params, Mesh { n: 1200, half_length: 6.0 });
+    assert!(coarse.converged);
+    let fine = Mesh { n: 2400, ..coarse.mesh };
+    let two_grid = refine(&coarse, fine);
+    assert!(two_grid.converged && two_grid.factorizations == 1, "{} LU", two_grid.factorizations);
+    let direct = interpolated_newton(&coarse, fine, 40, &mut Preconditioner::default());
+    assert!(direct.converged && direct.factorizations >= 1);
+    let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
+    assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
+    assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
+}
+
+#[test]
+fn a_carried_lu_preconditions_refinements_four_and_eight_times_finer() {
+    // One LU of the 1000-element Jacobian serves the refinements to 2000, 4000 and 8000
+    // elements (nested ratios 2, 4, 8), with no further factorisation, and each lands
+    // on the equilibrium that a refinement with a fresh LU of its coarse mesh finds.
+    let params = Params::sls(1.0, 0.1, 0.1, 0.3);
+    let mut s = solve(&params, Mesh { n: 1000, half_length: 6.0 });
+    assert!(s.converged);
+    let mut carried = None;
+    for (n, lus) in [(2000, 1), (4000, 0), (8000, 0)] {
+        let prev = s.clone();
+        s = refine_carrying(&prev, Mesh { n, ..prev.mesh }, &mut carried);
+        assert!(s.converged && s.factorizations == lus, "n = {n}: {} LU", s.factorizations);
+        assert_eq!(carried.as_ref().map(|a| a.n), Some(1000));
+        let fresh = refine(&prev, s.mesh);
+        assert!(fresh.converged && fresh.factorizations == 1);
+        let (a, b) = (s.friction().mu_star, fresh.friction().mu_star);
+        assert!((a - b).abs() < 1e-9 * a.abs(), "n = {n}: {a} vs {b}");
+    }
+    // Sixteen times finer is beyond MAX_NESTED_RATIO: the coarse level would be factored.
+    assert_eq!(nested_ratio(1000, 16000), None);
+    assert_eq!(nested_ratio(1000, 3000), None);
+    assert_eq!(nested_ratio(1000, 8000), Some(8));
+}
