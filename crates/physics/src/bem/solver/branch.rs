@@ -22,7 +22,7 @@
 
 use super::newton::PathSolver;
 use super::params::TOLERANCE;
-use super::solution::Solution;
+use super::solution::{Solution, Termination};
 use super::system::Control;
 use crate::lennard_jones;
 use crate::numerics::roots::golden_section_max;
@@ -336,7 +336,10 @@ pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
             guess.delta = above.delta + t * (below.delta - above.delta);
             let mut s = walk.solver.solve_load(w, &guess);
             if !(s.converged && on_branch(&above, &s)) {
-                s = along_the_path(&mut walk, &above, &below, w).unwrap_or(Solution { converged: false, ..s });
+                s = along_the_path(&mut walk, &above, &below, w).unwrap_or_else(|| {
+                    s.stop(Termination::OffBranch);
+                    s
+                });
             }
             s.iterations += walk.iterations;
             return s;
@@ -344,7 +347,7 @@ pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
     }
     let mut last = walk.current().clone();
     last.iterations = walk.iterations;
-    last.converged = false;
+    last.stop(Termination::BeyondPullOff);
     last.residual = (last.load() - w).abs();
     last
 }

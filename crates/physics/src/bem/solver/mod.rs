@@ -43,7 +43,7 @@ pub use params::{
 pub use refinement::{
     refine, solve_to_tolerance, solve_to_tolerance_shares, solve_with_estimate, ErrorShares, DOMAIN_SAFETY, MESH_SAFETY,
 };
-pub use solution::{Friction, Solution};
+pub use solution::{Friction, Solution, Termination};
 pub use system::Control;
 
 #[cfg(test)]

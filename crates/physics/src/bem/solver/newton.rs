@@ -4,7 +4,7 @@
 
 use super::params::Params;
 use super::precondition::Preconditioner;
-use super::solution::Solution;
+use super::solution::{Solution, Termination};
 use super::system::{Control, Operator, System};
 use crate::lennard_jones;
 use crate::lennard_jones::ALPHA;
@@ -56,6 +56,7 @@ pub(super) fn newton_limited(
     let mut delta = delta0;
     let mut ev = sys.eval(&h, delta);
     let mut iterations = 0;
+    let mut why = None;
     while ev.norm > tol && iterations < max_iter && ev.norm.is_finite() {
         crate::numerics::budget::checkpoint();
         iterations += 1;
@@ -64,6 +65,7 @@ pub(super) fn newton_limited(
         let lin_tol = (ev.merit * ev.merit.min(0.01)).max(1e-3 * tol);
         let d = pre.newton_step(&sys, &ev.dp, &rhs, lin_tol);
         if d.iter().any(|v| !v.is_finite()) {
+            why = Some(Termination::Diverged);
             break;
         }
         // Keep z = 1 + alpha lambda H above 30% of its current value.
@@ -88,13 +90,22 @@ pub(super) fn newton_limited(
             step *= 0.5;
         }
         if !accepted {
+            why = Some(Termination::StepTooSmall);
             break;
         }
         stalled = if step <= STALL_STEP { stalled + 1 } else { 0 };
         if stalled >= limits.stall {
+            why = Some(Termination::Stalled);
             break;
         }
     }
+    let termination = if ev.norm <= tol {
+        Termination::Converged
+    } else if !ev.norm.is_finite() {
+        Termination::Diverged
+    } else {
+        why.unwrap_or(Termination::IterationLimit)
+    };
     let u = op.displacement(&ev.p);
     let u_edges = op.edge_displacement(&ev.p);
     let params = match control {
@@ -110,7 +121,8 @@ pub(super) fn newton_limited(
         u,
         u_edges,
         delta,
-        converged: ev.norm <= tol,
+        converged: termination == Termination::Converged,
+        termination,
         iterations,
         factorizations: pre.factorizations,
         residual: ev.norm,

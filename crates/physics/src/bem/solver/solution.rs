@@ -18,12 +18,51 @@ pub struct Solution {
     /// U at the n + 1 element edges.
     pub u_edges: Vec<f64>,
     pub delta: f64,
+    /// `termination == Termination::Converged`.
     pub converged: bool,
+    /// Why the solver stopped.
+    pub termination: Termination,
     /// Newton iterations over the whole continuation path.
     pub iterations: usize,
     /// LU factorisations of the Jacobian (the rest of the linear solves are GMRES).
     pub factorizations: usize,
     pub residual: f64,
+}
+
+/// Why the solver of a point stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Termination {
+    /// The max-norm residual met Newton's tolerance.
+    Converged,
+    /// Newton's iteration limit was reached first.
+    IterationLimit,
+    /// Several line searches in a row cut the step to `STALL_STEP` or less (a fold of the
+    /// load-controlled path, or a lattice-trapped crack front).
+    Stalled,
+    /// No step along the Newton direction lowered the residual (30 halvings).
+    StepTooSmall,
+    /// The residual or the Newton direction stopped being finite.
+    Diverged,
+    /// The state reached under load control left the stable branch, and the path search
+    /// for it failed.
+    OffBranch,
+    /// The load is beyond the pull-off: the stable branch has no state there.
+    BeyondPullOff,
+}
+
+impl Termination {
+    /// Its name in tables: `converged`, `iteration_limit`, ...
+    pub fn name(self) -> &'static str {
+        match self {
+            Termination::Converged => "converged",
+            Termination::IterationLimit => "iteration_limit",
+            Termination::Stalled => "stalled",
+            Termination::StepTooSmall => "step_too_small",
+            Termination::Diverged => "diverged",
+            Termination::OffBranch => "off_branch",
+            Termination::BeyondPullOff => "beyond_pull_off",
+        }
+    }
 }
 
 /// Friction and its parts.
@@ -35,6 +74,12 @@ pub struct Friction {
 }
 
 impl Solution {
+    /// Marks the solution as stopped for `why` (not converged unless `why` is `Converged`).
+    pub fn stop(&mut self, why: Termination) {
+        self.termination = why;
+        self.converged = why == Termination::Converged;
+    }
+
     pub fn friction(&self) -> Friction {
         let pre = PI.sqrt() / 2.0 * self.params.lambda / self.params.w.abs().powf(1.5);
         let (mut adh, mut comp) = (0.0, 0.0);
