@@ -5,7 +5,7 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
-use super::buckling::MapModel;
+use super::map::MapModel;
 use crate::fem::critical::{bracket, probe, retrying};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};

@@ -6,7 +6,7 @@
 
 use super::buckling::{MeshStudy, Outcome};
 use super::shell::{default_lift_threshold, Stability};
-use super::{buckling, declared_mesh_error, prefixed, shell, snap_bracket, ShellParams};
+use super::{declared_mesh_error, map, prefixed, shell, snap_bracket, ShellParams};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Leg};
 use crate::fem::indent::Step;
@@ -71,7 +71,7 @@ pub struct IndentParams {
     /// What holds touching points of an adhesive contact in the stability test: `free`
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
     #[serde(default)]
-    pub hold: buckling::Hold,
+    pub hold: map::Hold,
     /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
     /// second cycle on twice the meridian elements, run alongside (`Cycles`; default false:
     /// the declared error of the default mesh for forces, none for W or other meshes).

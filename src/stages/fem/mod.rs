@@ -8,6 +8,7 @@
 pub mod buckling;
 pub mod gamma_c;
 pub mod indent;
+pub mod map;
 pub mod profile;
 pub mod shell;
 

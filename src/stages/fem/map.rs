@@ -1,0 +1,203 @@
+//! The model every point of the Chapter 3 buckling map shares (`MapModel`: the clamped
+//! shell, its mesh, the interface and the loading), with the choices of what holds touching
+//! points (`Hold`) and what counts as a snap (`SnapCriterion`); used by `fem.buckling`,
+//! `fem.buckling_limit` and `fem.gamma_c`.
+
+#![allow(non_snake_case)] // parameter names as in the thesis
+
+use super::shell::{self, Imperfection, MaterialLaw, Stability};
+use crate::fem::contact::Plate;
+use crate::fem::cycle::{CycleOptions, Snap};
+use crate::fem::mesh::ShellMesh;
+use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
+use crate::fem::system::{Base, Model};
+use crate::pipeline::kind::FieldError;
+use crate::stages::check;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// What holds touching points of an adhesive contact in the stability test
+/// (`fem::stability::AdhesiveHold`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Hold {
+    /// Nothing (Eq. 3.3 acts only for g' > 0; the default).
+    #[default]
+    Free,
+    /// The law's lifting stiffness 16 dgamma / g0^2.
+    LennardJones,
+}
+
+/// What counts as a snap-through for the questions "does it buckle before delta_max"
+/// (`fem.gamma_c`, `fem.buckling_limit`) and where (`fem.buckling` without dissipation)
+/// (`fem::cycle::Snap`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum SnapCriterion {
+    /// The stability test gives up the flattened state (the thesis' criterion; default).
+    #[default]
+    Instability,
+    /// The state lands on the inverted branch: the drop a displacement-controlled experiment
+    /// sees (states given up by the test but held by the energy do not count).
+    Landing,
+}
+
+impl SnapCriterion {
+    fn is_default(&self) -> bool {
+        *self == SnapCriterion::Instability
+    }
+}
+
+impl From<SnapCriterion> for Snap {
+    fn from(c: SnapCriterion) -> Snap {
+        match c {
+            SnapCriterion::Instability => Snap::Instability,
+            SnapCriterion::Landing => Snap::Landing,
+        }
+    }
+}
+
+impl From<Hold> for AdhesiveHold {
+    fn from(h: Hold) -> AdhesiveHold {
+        match h {
+            Hold::Free => AdhesiveHold::Free,
+            Hold::LennardJones => AdhesiveHold::LennardJones,
+        }
+    }
+}
+
+/// The shell (clamped base), its mesh, the interface and the loading shared by the points
+/// of a map. Every field has a default (the thesis' R = 15 mm, E = 1.3 N/mm^2, nu = 0.45,
+/// g0 = 0.1 mm).
+#[derive(Serialize, Deserialize, JsonSchema, Clone)]
+#[serde(deny_unknown_fields, default)]
+#[allow(non_snake_case)]
+pub struct MapModel {
+    /// Inner radius R (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub R: f64,
+    /// Young's modulus (N/mm^2) and Poisson's ratio.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub E: f64,
+    #[schemars(extend("exclusiveMinimum" = -1.0, "exclusiveMaximum" = 0.5))]
+    pub nu: f64,
+    /// Equilibrium distance g0 of the Lennard-Jones law (mm).
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub g0: f64,
+    /// Mesh: elements along the meridian (default 1.5 (R + h) / g0,
+    /// `fem::mesh::meridian_elements`) and through the thickness (default 2), grading.
+    #[schemars(range(min = 4, max = check::MAX_SHELL_ELEMENTS))]
+    pub n_meridian: Option<usize>,
+    #[schemars(range(min = 1, max = 16))]
+    pub n_thickness: usize,
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub grading: f64,
+    /// Contact penalty in units of E/h.
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub penalty: f64,
+    /// Largest plate displacement delta/R, and equal load steps to it.
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
+    pub delta_max: f64,
+    #[schemars(range(min = 1, max = check::MAX_STEPS))]
+    pub steps: usize,
+    /// Stability test: pressure fraction above which contact nodes are held.
+    #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
+    pub lift_threshold: f64,
+    /// Bisections locating a snap in delta.
+    pub bisections: u32,
+    /// What holds touching adhesive points in the stability test.
+    pub hold: Hold,
+    /// What counts as a snap-through: `instability` (default) or `landing`.
+    #[serde(skip_serializing_if = "SnapCriterion::is_default")]
+    pub snap: SnapCriterion,
+    /// Stability test: `lift_threshold` (default) or `tangent` (`shell::Stability`).
+    #[serde(skip_serializing_if = "Stability::is_default")]
+    pub stability: Stability,
+    /// Hyperelastic law (`shell::MaterialLaw`).
+    #[serde(skip_serializing_if = "MaterialLaw::is_default")]
+    pub material: MaterialLaw,
+    /// Imperfection (`shell::Imperfection`; default none).
+    #[serde(skip_serializing_if = "Imperfection::is_none")]
+    pub imperfection: Imperfection,
+}
+
+impl Default for MapModel {
+    fn default() -> Self {
+        MapModel {
+            R: 15.0,
+            E: 1.3,
+            nu: 0.45,
+            g0: 0.1,
+            n_meridian: None,
+            n_thickness: 2,
+            grading: 3.0,
+            penalty: 1000.0,
+            delta_max: 0.35,
+            steps: 35,
+            lift_threshold: LIFT_THRESHOLD,
+            bisections: 5,
+            hold: Hold::Free,
+            snap: SnapCriterion::Instability,
+            stability: Stability::LiftThreshold,
+            material: MaterialLaw::NeoHookean,
+            imperfection: Imperfection::default(),
+        }
+    }
+}
+
+impl MapModel {
+    pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
+        self.imperfection.validate(e, "model.");
+    }
+
+    pub(super) fn h(&self, h_over_r: f64) -> f64 {
+        h_over_r * self.R
+    }
+
+    /// Elements along the meridian at `h_over_r` (given, or the default rule).
+    pub(super) fn meridian_elements(&self, h_over_r: f64) -> usize {
+        self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h(h_over_r), self.g0))
+    }
+
+    pub(super) fn shell(&self, h_over_r: f64) -> Model {
+        self.shell_with(h_over_r, self.meridian_elements(h_over_r))
+    }
+
+    /// The shell with `n_meridian` elements along the meridian.
+    pub(super) fn shell_with(&self, h_over_r: f64, n_meridian: usize) -> Model {
+        let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), n_meridian, self.n_thickness, self.grading);
+        shell::model(mesh, self.E, self.nu, Base::Clamped, self.material, &self.imperfection)
+    }
+
+    /// The mesh is the default one (whose resolution error is declared,
+    /// `fem::mesh::default_mesh_rel_error`).
+    pub(super) fn default_mesh(&self) -> bool {
+        self.n_meridian.is_none() && self.n_thickness == 2
+    }
+
+    pub(super) fn plate(&self, model: &Model, h_over_r: f64, gamma_over_eh: f64, mu: f64) -> Plate {
+        Plate::new(&model.mesh, self.E, self.penalty)
+            .with_adhesion(gamma_over_eh * self.E * self.h(h_over_r), self.g0)
+            .with_friction(mu)
+    }
+
+    pub(super) fn options(&self, unload: bool) -> CycleOptions {
+        CycleOptions {
+            delta_max: self.delta_max * self.R,
+            steps: self.steps,
+            max_cuts: 8,
+            bisections: self.bisections,
+            criterion: self.stability.criterion(self.lift_threshold),
+            hold: self.hold.into(),
+            trace_unstable: false,
+            unload,
+            stop_at_buckling: !unload,
+            snap: self.snap.into(),
+        }
+    }
+
+    /// F R / (E h^3) per unit force.
+    pub(super) fn f_bar(&self, h_over_r: f64) -> f64 {
+        self.R / (self.E * self.h(h_over_r).powi(3))
+    }
+}
