@@ -198,8 +198,11 @@ proptest! {
         prop_assert!(po.load >= repro::theory::line_contact::jkr_pull_off() - 1e-3, "{} beyond JKR", po.load);
         let inside = descend_to_load(&start, 0.95 * po.load);
         prop_assert!(inside.converged && (inside.load() - 0.95 * po.load).abs() < 1e-6, "{}", inside.load());
+        prop_assert_eq!(inside.termination, repro::bem::solver::Termination::Converged);
         let beyond = descend_to_load(&start, 1.05 * po.load);
         prop_assert!(!beyond.converged);
+        // Why: past the pull-off the stable branch has no state at that load.
+        prop_assert_eq!(beyond.termination, repro::bem::solver::Termination::BeyondPullOff);
         prop_assert!(beyond.residual > 0.0 && beyond.residual.is_finite());
     }
 }
@@ -233,5 +236,6 @@ fn the_descent_reaches_95_percent_of_the_pull_off_at_large_lambda() {
         );
         let beyond = descend_to_load(&start, 1.05 * po.load);
         assert!(!beyond.converged && beyond.residual > 0.0 && beyond.residual.is_finite());
+        assert_eq!(beyond.termination, repro::bem::solver::Termination::BeyondPullOff);
     }
 }

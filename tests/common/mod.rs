@@ -127,12 +127,16 @@ impl Report {
     }
 }
 
-/// Every file under `dir`, with its bytes, sorted by path (for comparing outputs).
+/// Every file under `dir`, with its bytes, sorted by path (for comparing outputs); damage
+/// that a run moved aside (`*.damaged-*`) is not an output.
 pub fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut out = Vec::new();
     if let Ok(rd) = std::fs::read_dir(dir) {
         for e in rd.flatten() {
             let p = e.path();
+            if e.file_name().to_string_lossy().contains(".damaged-") {
+                continue;
+            }
             if p.is_dir() {
                 out.extend(snapshot(&p));
             } else {

@@ -33,11 +33,11 @@ const WORKER_TMP: &str = "worker-tmp";
 /// flushed to disk, then renamed over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
-    fs::create_dir_all(tmp_dir)?;
-    if let Some(parent) = path.parent() {
-        fs::create_dir_all(parent)?;
-    }
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    create_dirs(tmp_dir, n)?;
+    if let Some(parent) = path.parent() {
+        create_dirs(parent, n).with_context(|| format!("writing {}", path.display()))?;
+    }
     let tmp = tmp_dir.join(format!(".repro-{}-{n}.tmp", std::process::id()));
     let result = (|| -> Result<()> {
         let mut f = File::create(&tmp)?;
@@ -53,6 +53,41 @@ pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
         let _ = fs::remove_file(&tmp);
     }
     result.with_context(|| format!("writing {}", path.display()))
+}
+
+/// Creates `dir` and its missing parents. Where that fails because a file, or a link that
+/// leads nowhere, stands where one of them should be, that is moved aside (as by
+/// `move_aside_non_file`) and the directories are created: damage heals instead of failing
+/// every run. A link to a directory is followed, as a user may have made it.
+fn create_dirs(dir: &Path, n: u64) -> Result<()> {
+    if fs::create_dir_all(dir).is_ok() {
+        return Ok(());
+    }
+    let mut ancestors: Vec<&Path> = dir.ancestors().filter(|a| !a.as_os_str().is_empty()).collect();
+    ancestors.reverse();
+    for a in ancestors {
+        match fs::metadata(a) {
+            Ok(m) if m.is_dir() => continue,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound && fs::symlink_metadata(a).is_err() => break,
+            _ => {
+                let mut aside = a.as_os_str().to_owned();
+                aside.push(format!(".damaged-{}-{n}", std::process::id()));
+                match fs::rename(a, &aside) {
+                    Ok(()) => eprintln!(
+                        "repro: warning: {} was not a directory; moved aside to {}",
+                        a.display(),
+                        aside.to_string_lossy()
+                    ),
+                    // Another task of this run moved it first.
+                    Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                    Err(e) => return Err(e).with_context(|| format!("moving {} aside", a.display())),
+                }
+                break;
+            }
+        }
+    }
+    fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    Ok(())
 }
 
 /// Whatever stands at `path` and is neither a file nor a link (a directory, a fifo, a

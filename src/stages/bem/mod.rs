@@ -134,7 +134,7 @@ pub struct BemSweep;
 
 impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
-    const VERSION: u32 = 13;
+    const VERSION: u32 = 14;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
     const COLUMNS: &'static [&'static str] = &[
@@ -154,6 +154,7 @@ impl Kind for BemSweep {
         "p_max_bar",
         "p_min_bar",
         "converged",
+        "termination",
         "iterations",
         "residual",
         "error_estimate",
@@ -175,6 +176,8 @@ impl Kind for BemSweep {
         let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
         let (p_max, p_min) = extremes(&s);
         let ok = s.converged && f.mu_star.is_finite();
+        // Why the solver stopped; a converged state whose friction is not finite is not one.
+        let termination = if s.converged && !ok { "non_finite_friction" } else { s.termination.name() };
         let t = p
             .parameter_columns(1)
             .with_f64("mu_star", vec![finite(f.mu_star)])
@@ -187,6 +190,7 @@ impl Kind for BemSweep {
             .with_f64("p_max_bar", vec![p_max])
             .with_f64("p_min_bar", vec![p_min])
             .with("converged", ColumnData::Bool(vec![ok]))
+            .with("termination", ColumnData::Str(vec![termination.to_string()]))
             .with("iterations", ColumnData::I64(vec![s.iterations as i64]))
             .with_f64("residual", vec![bound(s.residual)])
             .with_f64("error_estimate", vec![bound(estimate)])
@@ -243,7 +247,12 @@ impl Kind for BemProfile {
         let t0 = std::time::Instant::now();
         let (s, estimate) = p.solve_at(&p.physics());
         if !s.converged {
-            anyhow::bail!("the point did not converge (residual {:e} after {} iterations)", s.residual, s.iterations);
+            anyhow::bail!(
+                "the point did not converge ({}: residual {:e} after {} iterations)",
+                s.termination.name(),
+                s.residual,
+                s.iterations
+            );
         }
         let two_a = 2.0 * s.mesh.a();
         let integrand: Vec<f64> = (0..s.p.len()).map(|j| s.p[j] * (s.u_edges[j + 1] - s.u_edges[j]) / two_a).collect();

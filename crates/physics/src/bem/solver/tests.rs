@@ -1,4 +1,5 @@
 use super::continuation::*;
+use super::newton::{initial_state, newton_limited, Limits};
 use super::params::*;
 use super::precondition::*;
 use super::refinement::*;
@@ -191,4 +192,18 @@ fn a_carried_lu_preconditions_refinements_four_and_eight_times_finer() {
     assert_eq!(nested_ratio(1000, 16000), None);
     assert_eq!(nested_ratio(1000, 3000), None);
     assert_eq!(nested_ratio(1000, 8000), Some(8));
+}
+
+#[test]
+fn newton_says_why_it_stopped() {
+    let params = Params::sls(1.0, 1.0, 0.1, 1.0);
+    let mesh = starting_mesh(&params, 1e-3);
+    let s = solve(&params, mesh);
+    assert!(s.converged && s.termination == super::Termination::Converged);
+    // Two iterations from a far start cannot meet the tolerance.
+    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
+    let (h0, d0) = initial_state(&op, &params);
+    let limits = Limits { iterations: 2, stall: usize::MAX };
+    let short = newton_limited(&op, &params, Control::Load(params.w), h0, d0, limits, &mut Default::default());
+    assert!(!short.converged && short.termination == super::Termination::IterationLimit, "{:?}", short.termination);
 }
