@@ -309,3 +309,32 @@ fn a_boundary_element_point_that_would_run_for_minutes_stops_at_its_time_limit()
     let hard = report.tasks()[0].clone();
     assert!(hard["error"].as_str().unwrap().starts_with("timed out: past its time limit of 2 s"), "{hard}");
 }
+
+#[test]
+fn a_task_that_would_need_more_memory_than_there_is_is_not_started_and_the_others_run() {
+    // bem.sweep on 32000 elements may hold a dense LU of 32000^2 values (8.2 GB, with the
+    // nested one 10.3 GB): refused before it allocates when 1 GB is available; the small
+    // point runs.
+    let s = Scratch::new("memory");
+    s.write(
+        "p.yaml",
+        "stages:\n  - name: big\n    kind: bem.sweep\n    params: {lambda: 1, W: 1, k: 0.1, V0: 1, n: 32000}\n  - name: small\n    kind: util.sleep\n    params: {x: 1}\n",
+    );
+    let out = s
+        .command(&["run", "p.yaml", "-q", "--report", "report.json"])
+        .env("REPRO_MEMORY_BYTES", "1e9")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&s.read("report.json")).unwrap();
+    let tasks = report["tasks"].as_array().unwrap();
+    let big = tasks.iter().find(|t| t["stage"] == "big").unwrap();
+    assert_eq!(big["failure"]["kind"], "resources", "{big}");
+    let needed = big["failure"]["needed_bytes"].as_u64().unwrap();
+    assert!((10.2e9..10.3e9).contains(&(needed as f64)), "{needed}");
+    let error = big["error"].as_str().unwrap();
+    assert!(error.starts_with("not started: it may need 10.3 GB of memory, 1.0 GB is available"), "{error}");
+    assert!(big["wall_time_s"].as_f64().unwrap() < 0.1, "refused before it ran: {big}");
+    let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
+    assert_eq!(small["status"], "computed");
+}

@@ -111,6 +111,12 @@ pub trait Kind: Send + Sync + 'static {
     fn shown_ranges(_p: &Self::Params) -> Vec<ShownRange> {
         Vec::new()
     }
+    /// The most memory a task of these parameters allocates, in bytes, estimated before it
+    /// runs, for the kinds whose need grows with their parameters (None: small). A task
+    /// whose estimate exceeds the memory available is not started (`task::TaskError::Resources`).
+    fn memory_bytes(_p: &Self::Params) -> Option<u64> {
+        None
+    }
     fn run(p: &Self::Params, inputs: &Inputs) -> Result<Output>;
 }
 
@@ -133,6 +139,8 @@ pub trait DynKind: Send + Sync {
     /// The ranges a point with these parameters shows; none when they do not parse (their
     /// errors are reported by `check`).
     fn shown_ranges(&self, params: &Value) -> Vec<ShownRange>;
+    /// [`Kind::memory_bytes`] of one point's canonical parameters.
+    fn memory_bytes(&self, params: &Value) -> Option<u64>;
 }
 
 /// A kind with the JSON Schema of its parameters, whose numeric bounds (`minimum`,
@@ -318,6 +326,9 @@ impl<K: Kind> DynKind for Typed<K> {
     }
     fn shown_ranges(&self, params: &Value) -> Vec<ShownRange> {
         parse::<K>(params).map(|p| K::shown_ranges(&p)).unwrap_or_default()
+    }
+    fn memory_bytes(&self, params: &Value) -> Option<u64> {
+        parse::<K>(params).ok().and_then(|p| K::memory_bytes(&p))
     }
 }
 

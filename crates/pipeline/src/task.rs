@@ -25,6 +25,10 @@ pub enum TaskError {
     /// The table it returned is not one a stage may publish (NaN, infinity, ragged columns).
     #[error("invalid output: {message}")]
     InvalidOutput { message: String },
+    /// Not started: its estimated memory exceeds what is available (`Kind::memory_bytes`;
+    /// the available memory is `REPRO_MEMORY_BYTES` if set, else the system's).
+    #[error("not started: it may need {} of memory, {} is available (set REPRO_MEMORY_BYTES to allow more)", gigabytes(*needed_bytes), gigabytes(*available_bytes))]
+    Resources { needed_bytes: u64, available_bytes: u64 },
     /// Computed, but its cache entry could not be written (a full disk, permissions).
     #[error("writing the cache entry: {message}")]
     NotStored { message: String },
@@ -47,6 +51,11 @@ pub fn compute_task(
     limit: Option<Duration>,
 ) -> (Result<Output, TaskError>, f64) {
     crate::fault::point("task.start");
+    if let (Some(needed_bytes), Some(available_bytes)) = (kind.memory_bytes(params), available_memory()) {
+        if needed_bytes > available_bytes {
+            return (Err(TaskError::Resources { needed_bytes, available_bytes }), 0.0);
+        }
+    }
     let t0 = Instant::now();
     let res =
         std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| registry.run_limited(kind, params, inputs, limit)));
@@ -73,4 +82,21 @@ pub fn compute_task(
         Ok(entry.output)
     });
     (out, dt)
+}
+
+/// The memory a task may use, in bytes: `REPRO_MEMORY_BYTES` if set (a share of a node, or
+/// a test), else the system's available memory (`MemAvailable` of `/proc/meminfo`); None
+/// where neither says.
+pub fn available_memory() -> Option<u64> {
+    if let Some(v) = std::env::var("REPRO_MEMORY_BYTES").ok().and_then(|v| v.trim().parse::<f64>().ok()) {
+        return Some(v.max(0.0) as u64);
+    }
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+fn gigabytes(bytes: u64) -> String {
+    format!("{:.1} GB", bytes as f64 / 1e9)
 }

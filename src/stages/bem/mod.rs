@@ -83,6 +83,13 @@ impl BemParams {
         Mesh { n, half_length }
     }
 
+    /// The memory its solves may allocate: on its fixed mesh, or on the finest the
+    /// refinement may reach (`n_max`).
+    fn memory_bytes(&self) -> u64 {
+        let n = self.n.unwrap_or_else(|| self.n_max.unwrap_or(solver::DEFAULT_N_MAX).max(self.mesh().n));
+        solver::memory_bound(n)
+    }
+
     /// Solves the point at `physics` (this point's mesh rules) with its error estimate.
     fn solve_at(&self, physics: &Params) -> (Solution, f64) {
         let mesh = self.mesh();
@@ -169,6 +176,10 @@ impl Kind for BemSweep {
         p.validate()
     }
 
+    fn memory_bytes(p: &Self::Params) -> Option<u64> {
+        Some(p.memory_bytes())
+    }
+
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let (s, estimate) = p.solve_at(&p.physics());
@@ -241,6 +252,10 @@ impl Kind for BemProfile {
 
     fn validate(p: &BemParams) -> Vec<FieldError> {
         p.validate()
+    }
+
+    fn memory_bytes(p: &Self::Params) -> Option<u64> {
+        Some(p.memory_bytes())
     }
 
     fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
@@ -378,6 +393,10 @@ impl Kind for BemMaxima {
             e.push(FieldError::new("V0_range", format!("needs 0 < from < to, got [{a}, {b}]")));
         }
         e
+    }
+
+    fn memory_bytes(p: &Self::Params) -> Option<u64> {
+        Some(p.point().memory_bytes())
     }
 
     fn run(p: &MaximaParams, _: &Inputs) -> Result<Output> {

@@ -75,6 +75,10 @@ impl Kind for BemPullOff {
     ];
     type Params = PullOffParams;
 
+    fn memory_bytes(p: &Self::Params) -> Option<u64> {
+        Some(solver::memory_bound(p.n.unwrap_or(solver::DEFAULT_N_MAX)))
+    }
+
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let start = Params::sls(p.lambda, W_START, p.k, 0.0).with_v(p.V);

@@ -37,8 +37,8 @@ mod system;
 pub use continuation::solve;
 pub use newton::PathSolver;
 pub use params::{
-    cohesive_zone, domain_half_length, domain_load_error, domain_rel_error, starting_mesh, zone_elements, Mesh, Params,
-    DEFAULT_N_MAX, DEFAULT_REL_TOL, MIN_ZONE_ELEMENTS, TOLERANCE,
+    cohesive_zone, domain_half_length, domain_load_error, domain_rel_error, memory_bound, starting_mesh, zone_elements,
+    Mesh, Params, DEFAULT_N_MAX, DEFAULT_REL_TOL, MIN_ZONE_ELEMENTS, TOLERANCE,
 };
 pub use refinement::{
     refine, solve_to_tolerance, solve_to_tolerance_shares, solve_with_estimate, ErrorShares, DOMAIN_SAFETY, MESH_SAFETY,

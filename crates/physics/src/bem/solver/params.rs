@@ -177,3 +177,13 @@ pub(super) fn mesh_levels(params: &Params, mesh: Mesh) -> Vec<Mesh> {
 
 /// Tolerance of the max-norm residual (in units of H).
 pub const TOLERANCE: f64 = 1e-9;
+
+/// An upper bound of the memory a solve on `n` elements allocates, in bytes: the dense LU of
+/// the near-contact block of the Jacobian (`precondition::ActiveLu`: at most n x n values of
+/// 8 bytes), the nested one of the mesh before it (n/2 x n/2), and the vectors of length n
+/// (GMRES's Krylov basis of `GMRES_ITERATIONS`, the FFT buffers of the Toeplitz products and
+/// the fields: fewer than 100 of them).
+pub fn memory_bound(n: usize) -> u64 {
+    let n = n as u64;
+    8 * n * n + 8 * (n / 2) * (n / 2) + 8 * 100 * n
+}
