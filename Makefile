@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: figures test build schema schema-check clean-cache lint bench bench-gamma-c validate-shell verify report report-check readme-example
+.PHONY: coverage figures test build schema schema-check clean-cache lint bench bench-gamma-c validate-shell verify report report-check readme-example
 
 build:
 	$(CARGO) build
@@ -98,3 +98,10 @@ bench:
 	./target/release/repro show tables/pareto_fem.parquet --columns config,rel_error,wall_time_s,on_front,meets_tolerance
 	$(CARGO) bench --bench micro
 	$(CARGO) bench --bench scale
+
+# The BEM error estimate against the actual error over 225 points (lambda 0.1-10, W 0.1-10,
+# k 0.01-0.5, V0 0.01-100; about 6 minutes on 2 cores): pipelines/coverage.yaml, its counts
+# in target/coverage/tables/coverage.parquet (estimate_covers, error_over_estimate).
+coverage: build
+	$(CARGO) run --quiet -- run pipelines/coverage.yaml -q --cache target/coverage/cache \
+		--figures target/coverage/figures --tables target/coverage/tables
