@@ -260,7 +260,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 24;
+    const VERSION: u32 = 25;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -284,6 +284,7 @@ impl Kind for FemIndent {
         "stable",
         "held",
         "converged",
+        "termination",
         "iterations",
         "residual",
         "buckled",
@@ -368,6 +369,7 @@ impl Kind for FemIndent {
                 ),
             )
             .with("converged", ColumnData::Bool(rows.iter().map(|r| r.step.converged).collect()))
+            .with("termination", ColumnData::Str(rows.iter().map(|r| r.step.termination.name().to_string()).collect()))
             .with("iterations", ColumnData::I64(rows.iter().map(|r| r.step.iterations as i64).collect()))
             .with_f64("residual", col(&|s| s.residual))
             // The cycle's summary, repeated on every row (0 where there is no such event).
@@ -407,11 +409,12 @@ impl Kind for FemIndent {
 mod tests {
     use super::*;
     use crate::fem::contact::ContactState;
-    use crate::fem::indent::Step;
+    use crate::fem::indent::{Step, StepEnd};
 
     fn step(delta: f64, force: f64, converged: bool) -> Step {
         let contact = ContactState { force, ..Default::default() };
-        Step { delta, u: Vec::new(), contact, iterations: 1, residual: 0.0, converged, stable: true }
+        let termination = if converged { StepEnd::Converged } else { StepEnd::IterationLimit };
+        Step { delta, u: Vec::new(), contact, iterations: 1, residual: 0.0, converged, stable: true, termination }
     }
 
     #[test]

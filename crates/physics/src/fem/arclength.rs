@@ -15,7 +15,7 @@
 //! as a sign change of d delta / ds together with a change of that flag.
 
 use super::contact::Plate;
-use super::indent::{evaluate, Evaluation, Options, Step};
+use super::indent::{evaluate, Evaluation, Options, Step, StepEnd};
 use super::system::{Model, Stiffness};
 
 /// Step control of the continuation (lengths in the mesh's units).
@@ -107,6 +107,7 @@ fn correct(
                 residual: ev.norm / scale,
                 converged: true,
                 stable,
+                termination: StepEnd::Converged,
             };
             return Some((step, ev));
         }

@@ -22,6 +22,45 @@ pub struct Step {
     pub converged: bool,
     /// The free tangent is positive definite (stable under prescribed delta).
     pub stable: bool,
+    /// Why its solver stopped.
+    pub termination: StepEnd,
+}
+
+/// Why the solver of a state stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepEnd {
+    /// The residual met the tolerance (for an energy descent: at a positive-definite
+    /// tangent, a stable state).
+    Converged,
+    /// The iteration limit was reached first.
+    IterationLimit,
+    /// No step along the Newton direction (nor the convexified one) was admissible: every
+    /// trial inverted an element or the tangent was singular.
+    NoStep,
+    /// The energy descent found no shift that lowers the potential (`SHIFT_MAX`).
+    NoDescent,
+    /// The residual met the tolerance at a tangent that is not positive definite: an
+    /// equilibrium, but not a stable one (an energy descent's verdict).
+    Unstable,
+    /// The state could not be evaluated (an inverted element).
+    Inverted,
+    /// Not solved: the reference state taken as the start when no adhering state was found.
+    NotSolved,
+}
+
+impl StepEnd {
+    /// Its name in tables: `converged`, `iteration_limit`, ...
+    pub fn name(self) -> &'static str {
+        match self {
+            StepEnd::Converged => "converged",
+            StepEnd::IterationLimit => "iteration_limit",
+            StepEnd::NoStep => "no_step",
+            StepEnd::NoDescent => "no_descent",
+            StepEnd::Unstable => "unstable",
+            StepEnd::Inverted => "inverted",
+            StepEnd::NotSolved => "not_solved",
+        }
+    }
 }
 
 impl Step {
@@ -36,6 +75,7 @@ impl Step {
             residual: f64::INFINITY,
             converged: false,
             stable: false,
+            termination: StepEnd::Inverted,
         }
     }
 }
@@ -176,6 +216,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     let mut best: Option<(Vec<f64>, Evaluation)> = None;
     let mut since_best = 0;
     let mut iterations = 0;
+    let mut no_step = false;
     while cur.norm > opt.tol * scale && iterations < opt.max_iterations {
         crate::numerics::budget::checkpoint();
         iterations += 1;
@@ -206,6 +247,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
         }
         // The accepted point's tangent (its residual is the trial's, bitwise).
         let Some((trial, ev)) = next.and_then(|t| evaluate(model, plate, delta, &t, stick).map(|ev| (t, ev))) else {
+            no_step = true;
             break;
         };
         u = trial;
@@ -213,7 +255,14 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     }
     let converged = cur.norm <= opt.tol * scale;
     let stable = converged && model.is_stable(&cur.tangent);
-    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable }
+    let termination = if converged {
+        StepEnd::Converged
+    } else if no_step {
+        StepEnd::NoStep
+    } else {
+        StepEnd::IterationLimit
+    };
+    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable, termination }
 }
 
 /// Newton at plate displacement `delta` from the converged state `from`, started from the
@@ -332,6 +381,7 @@ pub fn descend_loaded(
     };
     let mut shift = 0.0;
     let mut iterations = 0;
+    let mut no_descent = false;
     let raise = |s: f64| if s == 0.0 { SHIFT_MIN } else { 10.0 * s };
     let stable = loop {
         let rhs: Vec<f64> = cur.residual.iter().map(|v| -v).collect();
@@ -353,7 +403,10 @@ pub fn descend_loaded(
                 shift = raise(shift);
             }
         }
-        let Some(du) = du else { break stable };
+        let Some(du) = du else {
+            no_descent = true;
+            break stable;
+        };
         // Backtracking on Pi along the step (the penalty makes Pi stiff where the contact set
         // changes); at rounding level of Pi (near the minimum) a lower residual will do.
         let mut t = 1.0;
@@ -378,13 +431,32 @@ pub fn descend_loaded(
             None => {
                 shift = raise(shift);
                 if shift > SHIFT_MAX {
+                    no_descent = true;
                     break stable;
                 }
             }
         }
     };
     let converged = cur.norm <= tol && stable;
-    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable: converged }
+    let termination = if converged {
+        StepEnd::Converged
+    } else if cur.norm <= tol {
+        StepEnd::Unstable
+    } else if no_descent {
+        StepEnd::NoDescent
+    } else {
+        StepEnd::IterationLimit
+    };
+    Step {
+        delta,
+        u,
+        contact: cur.contact,
+        iterations,
+        residual: cur.norm / scale,
+        converged,
+        stable: converged,
+        termination,
+    }
 }
 
 /// Loads from delta = 0 to `delta_max` in `steps` equal steps (halved on failure, at most
@@ -481,7 +553,13 @@ mod tests {
         let a = 0.8 * flat.contact.radius;
         let dimpled = |depth: f64| dimple(&model, &flat.u, a, depth * a * a / (r + 0.5 * h));
         let inverted = solve_at(&model, &plate, e, flat.delta, &dimpled(1.0), &[], newton);
-        assert!(inverted.converged);
+        assert!(inverted.converged && inverted.termination == StepEnd::Converged);
+        // Each solver says why it stopped: Newton cut short, the descent cut short.
+        let short = Options { max_iterations: 1, ..Options::default() };
+        let cut = solve_at(&model, &plate, e, flat.delta, &dimpled(1.0), &[], short);
+        assert!(!cut.converged && cut.termination == StepEnd::IterationLimit, "{:?}", cut.termination);
+        let cut = descend(&model, &plate, e, flat.delta, &dimpled(1.0), 1);
+        assert!(!cut.converged && cut.termination == StepEnd::IterationLimit, "{:?}", cut.termination);
         let close = |x: &Step, y: &Step| (x.contact.force / y.contact.force - 1.0).abs() < 1e-6;
         let early = load_path(&model, &plate, e, 0.1 * r, 4, 6).pop().unwrap();
         let disturbed: Vec<f64> = early.u.iter().map(|v| 1.01 * v).collect();

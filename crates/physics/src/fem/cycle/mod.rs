@@ -21,7 +21,7 @@ use jump::{confirm_failure, invert, is_inverted, jump_in, land, land_with, walk,
 
 use super::arclength::{continue_path, ArcOptions};
 use super::contact::Plate;
-use super::indent::{solve_at, solve_from, solve_from_extending, Options, Step};
+use super::indent::{solve_at, solve_from, solve_from_extending, Options, Step, StepEnd};
 use super::stability::{unilaterally_stable, AdhesiveHold, Criterion};
 use super::system::Model;
 
@@ -226,6 +226,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         residual: 0.0,
         converged: true,
         stable: true,
+        termination: StepEnd::Converged,
     };
     // With adhesion the reference state is not in equilibrium at delta = 0: the apex jumps
     // into contact (as the plate approaches, before delta = 0). The loading starts from that
@@ -233,7 +234,9 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     // If no adhering state is found, the loading starts from the reference state, which is
     // then recorded as what it is: not an equilibrium (not converged).
     let zero = match plate.adhesion {
-        Some(_) => jump_in(model, plate, e, base).unwrap_or(Step { converged: false, ..zero }),
+        Some(_) => {
+            jump_in(model, plate, e, base).unwrap_or(Step { converged: false, termination: StepEnd::NotSolved, ..zero })
+        }
         None => zero,
     };
     let mut loading = vec![CyclePoint { step: zero.clone(), leg: Leg::Loading, inverted: false }];
