@@ -47,13 +47,16 @@ fn the_error_estimate_brackets_the_true_error() {
     let (s, estimate) = mesh_share(&point(), Mesh { n: 300, half_length: 6.0 }, f64::INFINITY, 300);
     let error = (s.friction().mu_star - reference).abs();
     assert!(error < 3.0 * estimate && estimate < 10.0 * error, "error {error:e}, estimate {estimate:e}");
-    // The default resolution: the starting mesh for 1e-3, refined until the estimate meets
-    // it; the answer then lies within that of the converged value (2.08757 on L = 6).
+    // The default resolution: the starting mesh for 1e-3, refined until the two-level share
+    // meets it; the answer then lies within that of the converged value (2.08757 on L = 6),
+    // and the reported mesh share, from three levels, covers its error (the converged value
+    // is known to 5e-6).
     let m = starting_mesh(&point(), 1e-3);
     let (s, estimate) = mesh_share(&point(), m, 1e-3, 16_000);
     let mu = s.friction().mu_star;
-    assert!(estimate <= 1e-3 * mu, "{m:?}: {estimate}");
-    assert!((mu - 2.08757).abs() < 1e-3 * mu, "{m:?}: {mu}");
+    let error = (mu - 2.08757).abs();
+    assert!(error < 1e-3 * mu, "{m:?}: {mu}");
+    assert!(error <= estimate + 5e-6 && estimate < 1e-2 * mu, "{m:?}: error {error:e}, estimate {estimate:e}");
 }
 
 #[test]

@@ -96,24 +96,23 @@ fn copy_tree(from: &Path, to: &Path) {
     assert!(st.success());
 }
 
-fn first_entry(dir: &Path) -> PathBuf {
+/// The cache entries of a run's directory, sorted.
+fn entry_paths(dir: &Path) -> Vec<PathBuf> {
     let mut all: Vec<PathBuf> = std::fs::read_dir(dir.join("cache/objects"))
         .unwrap()
         .flatten()
         .flat_map(|d| std::fs::read_dir(d.path()).unwrap().flatten().map(|f| f.path()))
         .collect();
     all.sort();
-    all[0].clone()
+    all
+}
+
+fn first_entry(dir: &Path) -> PathBuf {
+    entry_paths(dir).remove(0)
 }
 
 fn other_entry(dir: &Path) -> PathBuf {
-    let mut all: Vec<PathBuf> = std::fs::read_dir(dir.join("cache/objects"))
-        .unwrap()
-        .flatten()
-        .flat_map(|d| std::fs::read_dir(d.path()).unwrap().flatten().map(|f| f.path()))
-        .collect();
-    all.sort();
-    all[all.len() - 1].clone()
+    entry_paths(dir).pop().unwrap()
 }
 
 fn manifest(dir: &Path) -> PathBuf {

@@ -23,12 +23,15 @@ pub const MESH_SAFETY: f64 = 3.0;
 
 pub const DOMAIN_SAFETY: f64 = 2.0;
 
-/// A solution with the estimate of the discretisation error of mu* (`observed_estimate`):
-/// when the coarse solve does not converge, the estimate is |mu*| (no confidence).
-/// Reported with `MESH_SAFETY`, plus the domain's truncation, |mu*| `domain_rel_error` times
-/// `DOMAIN_SAFETY`.
+/// A solution on a fixed `mesh` with its error estimate: the two-level `richardson` share
+/// against the mesh with half its elements (when that solve does not converge, |mu*|: no
+/// confidence), reported with `MESH_SAFETY`, plus the domain's truncation, |mu*|
+/// `domain_rel_error` times `DOMAIN_SAFETY`. (A fixed mesh may be coarse enough that a
+/// quarter of it is far from the asymptotic regime; the three-level estimate of
+/// `solve_to_tolerance` is then needlessly large.)
 pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
-    solve_to_tolerance(params, mesh, f64::INFINITY, mesh.n)
+    let (s, shares) = refine_to(params, mesh, f64::INFINITY, mesh.n, false);
+    (s, shares.reported())
 }
 
 /// The Richardson estimate of the error of `fine` from `coarse` (half its elements),
@@ -147,6 +150,12 @@ pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usiz
 
 /// `solve_to_tolerance` with the error's two shares apart.
 pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, ErrorShares) {
+    refine_to(params, mesh, rel_tol, n_max, true)
+}
+
+/// The refinement of `solve_to_tolerance`; `three_levels`: the mesh's share from three
+/// levels (`observed_estimate`), else the two-level `richardson`.
+fn refine_to(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize, three_levels: bool) -> (Solution, ErrorShares) {
     let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
     let mut carried = None;
@@ -177,6 +186,9 @@ pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_ma
             let domain = fine.friction().mu_star.abs() * domain_rel_error(params, mesh.half_length);
             // The mesh's share from three levels: a quarter-size solve when the
             // refinement stopped at its first two.
+            if !three_levels {
+                return (fine, ErrorShares { mesh: estimate, domain });
+            }
             let coarser = match coarser {
                 Some(c) => Some(c),
                 None if !hopeless && fine.converged && coarse.mesh.n / 2 >= 8 => {
