@@ -2,6 +2,7 @@
 
 pub mod banded;
 pub mod budget;
+pub mod extrapolation;
 pub mod fit;
 pub mod gmres;
 pub mod quad;

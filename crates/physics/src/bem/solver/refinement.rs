@@ -8,6 +8,7 @@ use super::params::{domain_rel_error, Mesh, Params};
 use super::precondition::{nested_ratio, ActiveLu, Preconditioner, DROP, TWO_GRID_MIN_N};
 use super::solution::Solution;
 use super::system::{Control, Operator, System};
+use crate::numerics::extrapolation;
 
 /// Safety factors of the reported error estimate of mu* (`solve_to_tolerance`): on the
 /// mesh's Richardson share, Roache's factor 3 for a grid convergence index from two grids
@@ -40,8 +41,11 @@ pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
 /// |mu*(n) - mu*(n/2)| / 3. What the refinement stops on.
 pub(super) fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
     let mu = fine.friction().mu_star;
-    let estimate =
-        if coarse.converged && fine.converged { (mu - coarse.friction().mu_star).abs() / 3.0 } else { mu.abs() };
+    let estimate = if coarse.converged && fine.converged {
+        extrapolation::richardson(mu, coarse.friction().mu_star, 2.0)
+    } else {
+        mu.abs()
+    };
     if estimate.is_finite() {
         estimate
     } else {
@@ -49,33 +53,28 @@ pub(super) fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
     }
 }
 
-/// The estimate of the error of `fine` from three levels (n/4, n/2, n), with the
-/// successive differences d1 = mu*(n/2) - mu*(n/4) and d2 = mu*(n) - mu*(n/2): the largest
-/// of the two-level `richardson` |d2|/3, one more second-order halving of the previous
-/// difference |d1|/12 (the same in the asymptotic regime, where |d1| = 4 |d2|), and, when
-/// the two differences have one sign, the geometric tail |d2|/(r - 1) at the observed
-/// ratio r = |d1/d2| (taken in [`MIN_RATIO`, 4]). The two-level estimate alone misses the
-/// error where the sequence is not yet asymptotic: at lambda = 3, W = 1, k = 0.1, V0 =
-/// 0.01 the differences are -1.7e-2, -9.1e-5, +5.4e-4, +2.0e-4 (n = 288 to 4616), and
-/// |d2|/3 at n = 1154 under-states the error (8.1e-4) by 6 times; |d1|/12 bounds it. Where
-/// the differences shrink slowly (by 1.2 per halving) the tail covers it. Without a
-/// converged `coarser`, the two-level estimate.
+/// The estimate of the error of `fine` from three levels (n/4, n/2, n): the three-level
+/// bound of `numerics::extrapolation::three_level` for second order (the largest of the
+/// two-level Richardson share, one more halving of the previous difference, and the
+/// geometric tail at the observed ratio). The two-level estimate alone misses the error where
+/// the sequence is not yet asymptotic: at lambda = 3, W = 1, k = 0.1, V0 = 0.01 the
+/// differences are -1.7e-2, -9.1e-5, +5.4e-4, +2.0e-4 (n = 288 to 4616), and |d2|/3 at n =
+/// 1154 under-states the error (8.1e-4) by 6 times; |d1|/12 bounds it. Where the
+/// differences shrink slowly (by 1.2 per halving) the tail covers it. Without a converged
+/// `coarser`, the two-level estimate.
 pub(super) fn observed_estimate(fine: &Solution, coarse: &Solution, coarser: Option<&Solution>) -> f64 {
     let two_level = richardson(fine, coarse);
     let Some(coarser) = coarser.filter(|c| c.converged && coarse.converged && fine.converged) else {
         return two_level;
     };
     let mu = |s: &Solution| s.friction().mu_star;
-    let (d1, d2) = (mu(coarse) - mu(coarser), mu(fine) - mu(coarse));
-    if !(d1.is_finite() && d2.is_finite()) {
-        return two_level;
-    }
-    let tail = if d1 * d2 > 0.0 { d2.abs() / ((d1 / d2).abs().clamp(MIN_RATIO, 4.0) - 1.0) } else { 0.0 };
-    let estimate = tail.max(d1.abs() / 12.0).max(two_level);
+    let estimate = extrapolation::three_level(mu(coarser), mu(coarse), mu(fine), 2.0, MIN_RATIO);
     if estimate.is_finite() {
-        estimate
-    } else {
+        estimate.max(two_level)
+    } else if [mu(coarser), mu(coarse), mu(fine)].iter().all(|m| m.is_finite()) {
         f64::MAX
+    } else {
+        two_level
     }
 }
 
