@@ -4,12 +4,12 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis
 
-use super::buckling::{MeshStudy, Outcome};
 use super::shell::{default_lift_threshold, Stability};
 use super::{declared_mesh_error, map, prefixed, shell, snap_bracket, ShellParams};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Leg};
 use crate::fem::indent::Step;
+use crate::fem::mesh_study::{MeshStudy, Outcome};
 use crate::fem::system::{Base, Model};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
 use crate::pipeline::table::{ColumnData, Table};

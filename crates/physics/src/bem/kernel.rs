@@ -100,14 +100,9 @@ fn q(s: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
 /// of `q` at the element edges (odd multiples of a) and at the nodes (even ones), each
 /// evaluated once: 4n + 1 evaluations of the exponential integrals per retardation time
 /// instead of two per coefficient (8n - 2). With the kernel built once per lambda
-/// continuation (`solver::Operator::scaled`), measured (release): a power-law
-/// rolling point (lambda = 3, W = 0.1, k = 0.001, s = 0.5, V0 = 1e6), 75 % of whose time
-/// had been the exponential integrals, 0.22 -> 0.145 s; the Chapter 4-5 stages of
-/// `thesis.yaml` 1289 G -> 1123 G instructions (rolling_power_law 86 -> 42 s of task
-/// time). The coefficients agree with `strip_spectrum` to rounding (tested), but not
-/// bitwise, and one of 384 friction-map points took another continuation path: lambda =
-/// 3, W = 1, V0 = 4.87, mu* 1.847042 on 577 elements -> 1.847277 on 1154, inside its
-/// error estimate (0.0013); every other table equal to the digits `repro show` prints.
+/// continuation (`solver::Operator::scaled`): the exponential integrals had been most of
+/// the time of a power-law point (docs/tuning.md). The coefficients agree with
+/// `strip_spectrum` to rounding (tested), but not bitwise.
 pub struct MeshKernel {
     pub nodes: Vec<f64>,
     pub edges: Vec<f64>,

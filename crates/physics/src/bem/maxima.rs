@@ -4,8 +4,7 @@
 //! solved; mu*(V0) has one maximum, so this is the best grid point of the whole grid),
 //! then golden-section search in log V0 between the neighbours of the best grid point, so
 //! that only the speeds the search needs are solved. The far ends of the grid are the
-//! dearest solves at large lambda (lambda = 12: V0 = 0.1 takes 40 s of the 93 s the full
-//! grid's search took, against ~2 s for a speed near the maximum).
+//! dearest solves at large lambda (docs/tuning.md).
 
 use super::solver::{Friction, Params, Solution};
 use crate::numerics::roots::maximize_climbing;

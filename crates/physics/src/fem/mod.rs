@@ -26,5 +26,6 @@ pub mod element;
 pub mod indent;
 pub mod material;
 pub mod mesh;
+pub mod mesh_study;
 pub mod stability;
 pub mod system;

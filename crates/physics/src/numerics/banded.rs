@@ -4,16 +4,13 @@
 //! Why not a sparse solver: the shell's tangent (`fem::system`) is a band of half-width 21
 //! on ~3700 dofs (a meridian strip of quadratic elements, numbered along the meridian). A
 //! band factorisation costs n kl (kl + ku) multiply-adds in contiguous loops, without the
-//! graph searches of a general sparse LU: one LU 1.0 ms, one Cholesky 0.5 ms at that size
-//! (`benches/micro.rs`, `fem_band_factorisation`); a frictional `fem.buckling` point went
-//! in 6.5 s instead of 9.0 s with faer's simplicial sparse LU.
+//! graph searches of a general sparse LU (`benches/micro.rs`, `fem_band_factorisation`;
+//! the comparison with faer's simplicial sparse LU in docs/tuning.md).
 //!
 //! Both factorisations skip the exact zeros past each row's last nonzero (a profile, or
 //! skyline, within the band: `Band::lu`), and the LU keeps its multipliers column by column
 //! for the forward substitution; the results are the whole-window algorithm's bit for bit
-//! (tested). `perf stat` of `repro point fem.buckling h_over_R=0.06 mu=1
-//! gamma_over_Eh=0.001` (release): 65.1 G instructions instead of 76.0 G for the whole window, cycles about
-//! -10 %.
+//! (tested), with fewer instructions (docs/tuning.md).
 
 // Index loops over rows and columns read like the factorisations they implement.
 #![allow(clippy::needless_range_loop)]

@@ -10,6 +10,14 @@ pub fn richardson(fine: f64, coarse: f64, order: f64) -> f64 {
     (fine - coarse).abs() / (2f64.powf(order) - 1.0)
 }
 
+/// The error of `coarse` from `fine` (half its mesh size) for a method of order `order`:
+/// |coarse - fine| 2^order / (2^order - 1) (the companion is the finer mesh where the
+/// coarser may lie outside the asymptotic range).
+pub fn coarse_error(coarse: f64, fine: f64, order: f64) -> f64 {
+    let rate = 2f64.powf(order);
+    (coarse - fine).abs() * rate / (rate - 1.0)
+}
+
 /// The error of `fine` from three solutions on meshes halved in turn (`coarser`, `coarse`,
 /// `fine`), for a method of order `order` at most, with d1 = coarse - coarser and d2 = fine -
 /// coarse: the largest of the two-level `richardson` |d2|/(2^p - 1), one more halving of
@@ -37,6 +45,10 @@ mod tests {
         assert!((richardson(fine, coarse, 2.0) - (fine - 1.0)).abs() < 1e-15);
         // Three levels of the same sequence: the same.
         assert!((three_level(u(0.2), coarse, fine, 2.0, 1.1) - (fine - 1.0)).abs() < 1e-15);
+        // The coarse solution's error from the finer one: first order, u(h) = 1 + c h.
+        let u1 = |h: f64| 1.0 + 0.3 * h;
+        assert!((coarse_error(u1(0.1), u1(0.05), 1.0) - (u1(0.1) - 1.0)).abs() < 1e-15);
+        assert!((coarse_error(coarse, fine, 2.0) - (coarse - 1.0)).abs() < 1e-15);
     }
 
     #[test]

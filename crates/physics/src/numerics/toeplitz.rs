@@ -5,10 +5,8 @@
 //!
 //! The data are real: real-to-complex transforms (`realfft`, a complex FFT of half the
 //! length), and M the smallest even 2^a 3^b, not the next power of two (n = 2810 elements:
-//! 5832 instead of 8192). Measured (release, against the complex transform of
-//! the next power of two): `repro point bem.pulloff lambda=3 k=0.1 V=1e-6`, where the
-//! products were half of the time, 17.1 G -> 12.0 G instructions (3.4 -> 2.6 s); `repro
-//! point bem.sweep lambda=24 W=0.1 k=0.1 V0=2.7` 72 -> 58 s; mu* the same to 1e-10.
+//! 5832 instead of 8192): about a third fewer instructions than the complex transform of
+//! the next power of two where the products dominate (docs/tuning.md).
 
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};

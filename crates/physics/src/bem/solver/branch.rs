@@ -162,8 +162,8 @@ pub struct PullOff {
 /// Measured: at lambda = 3, k = 0.001, V = 1 the load falls to -2.6104, rises by 0.27% while
 /// the approach turns, then falls to the pull-off, -2.7462 (the first rise had been reported
 /// as the pull-off); at lambda = 3, k = 0.1 on 290 elements (the cohesive zone unresolved)
-/// it dips to +0.044 before the branch turns down. The thesis's two pull-off stages took
-/// 44.6 s (dev build) with the first rise, 46.1 s with this 2%, 59.4 s with 10%.
+/// it dips to +0.044 before the branch turns down. 2 % costs little more than stopping at
+/// the first rise; 10 % a third more (docs/tuning.md).
 const RISE: f64 = 0.02;
 
 /// Walks down the branch from the converged state `start` (any load above the pull-off) and

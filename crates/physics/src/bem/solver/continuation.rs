@@ -36,9 +36,7 @@ pub(super) fn continue_geometric(
     let lambda = last.params.lambda;
     // A factor that just failed is not grown again until two steps in a row succeed: at
     // large lambda, where the steps alternate with lattice trapping, growing at once made
-    // every other step fail (15 Newton iterations each). Measured (release, W = 0.1, k =
-    // 0.1): lambda = 24, V0 = 2.2 54 -> 49 s (3540 -> 2784 Newton iterations), V0 = 2.7
-    // 34 -> 31 s; the lambda = 16 maximum 45 -> 33 s; the same mu* to every digit printed.
+    // every other step fail (15 Newton iterations each; docs/tuning.md).
     let mut successes = 2;
     while value != to {
         let next = if up { (value * factor).min(to) } else { (value / factor).max(to) };
@@ -90,9 +88,8 @@ pub(super) const LAMBDA_START: f64 = 0.3;
 /// walked with mesh sequencing (`mesh_levels`): on the coarsest mesh whose elements are
 /// 1/40 of the contact, lambda is raised as far as that mesh resolves the cohesive zone
 /// (`lambda_resolved`), then the solution is interpolated onto the next finer mesh and
-/// lambda raised further, up to `mesh`. Measured at W = 0.1, k = 0.1, V0 = 3.4: lambda = 12
-/// on n = 4000 in 0.9 s instead of 47 s (the same mu* to 1e-9), and lambda = 16 (2.4 s) and
-/// 24 (2 min), which the single-mesh path did not reach, converge. If that path fails, the
+/// lambda raised further, up to `mesh`: many times cheaper than the single mesh, and it
+/// reaches lambda that the single mesh does not (docs/tuning.md). If that path fails, the
 /// same path on `mesh` alone, then the other order (lambda at V = 0, then the speed) on it,
 /// are tried. On coarse meshes at large lambda the discrete crack front has folds (lattice
 /// trapping): raising lambda at V = 0 can end next to one, where any change of speed snaps;
@@ -161,8 +158,7 @@ pub(super) fn interpolated_newton(
 /// Newton iterations allowed to one step of the lambda continuation before it counts as
 /// failed and is retried with a smaller factor. Steps that converge take few; at large
 /// lambda on the finest mesh most failures are lattice trapping, where more iterations do
-/// not help. Measured (lambda = 24, W = 0.1, k = 0.1, V0 = 2.2, n = 8000): 137 s with 40,
-/// 73 s with 15 or 10, the same mu* to the 6 digits printed; the lambda = 16 maximum 266 -> 248 s.
+/// not help (the limit of 40 took twice as long for the same mu*: docs/tuning.md).
 pub(super) const LAMBDA_STEP_ITERATIONS: usize = 15;
 
 /// A step of the lambda continuation also counts as failed (and is retried with a smaller
@@ -170,12 +166,8 @@ pub(super) const LAMBDA_STEP_ITERATIONS: usize = 15;
 /// `STALL_STEP` or less. At large lambda a failing step does not diverge: it crawls, the
 /// residual falling by about 1 % per iteration at steps of 1/64-1/128, to the iteration
 /// limit (the crack front would have to jump an element, lattice trapping); converging
-/// steps are damped at most once or twice in a row before their steps grow again.
-/// Measured (release, W = 0.1, k = 0.1, the same mu* to every digit printed): lambda = 24,
-/// V0 = 2.7 2475 -> 1838 Newton iterations, 68 -> 36 s; V0 = 2.2 2784 -> 2088, 69 -> 45 s;
-/// the lambda = 16 maximum 61 -> 40 s. The Chapter 4-5 stages of `thesis.yaml` run side by
-/// side, one core each: 1917 G instructions instead of 2080 G, 464 s of task time instead
-/// of 540 s, every table equal to the digits `repro show` prints.
+/// steps are damped at most once or twice in a row before their steps grow again
+/// (docs/tuning.md: the same answers, a quarter fewer Newton iterations).
 pub(super) const LAMBDA_STEP_STALL: usize = 2;
 
 pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, pre: &mut Preconditioner) -> Solution {

@@ -125,31 +125,21 @@ pub(super) struct Preconditioner {
 /// flops and an iteration's triangular solves 2 m^2, so at 1 the iterations lost would have
 /// paid for it by that count (the ski-rental balance, 2-competitive). The factorization is
 /// blocked and the solves are memory-bound, and each iteration adds an FFT product and the
-/// orthogonalisation, so the measured balance is lower: the 22 BEM stages of `thesis.yaml`
-/// (release, empty caches, one after the other, 2 jobs) took 139.9 s of task time with no
-/// such rebuild, 112.5 / 110.6 / 114.4 s at 0.1 / 0.2 / 0.3 (pull-offs 0.42-0.63 x, the
-/// maxima 0.70 x, lambda24 0.93 x), 180.9 s with a rebuild whenever GMRES took more than 12
-/// and twice its first count (lambda24 2.2 x). The counts, not times, decide: deterministic.
+/// orthogonalisation, so the best balance is lower (0.1-0.3 are equally good on the BEM
+/// stages of `thesis.yaml`: docs/tuning.md). The counts, not times, decide: deterministic.
 pub(super) const REBUILD_BALANCE: f64 = 0.2;
 
 /// The fewest elements of a mesh for which the two-grid preconditioner is tried instead of
-/// a fresh active LU, whose cost grows as the cube of the active nodes (measured at
-/// lambda = 3, W = 0.1, V0 = 1e-3, k = 0.1: 0.17 s at n = 4632 and 1.15 s at n = 9264, of a
-/// whole solve to that mesh of 1.63 s; with the two-grid 0.57 s, and 12.2 -> 2.9 s at
-/// n = 18528, the same mu* to 9 digits).
+/// a fresh active LU, whose cost grows as the cube of the active nodes: from about 2000
+/// elements on, the LU dominates a solve (docs/tuning.md).
 pub(super) const TWO_GRID_MIN_N: usize = 2000;
 
 /// The largest ratio of fine to coarse elements at which a coarse LU is used as a nested
 /// preconditioner (`ActiveLu::solve_nested`): `solve_to_tolerance` carries the LU of its
 /// first refinement through the next ones instead of factoring each coarse level anew,
-/// whose cost grows as the cube of its active nodes. Measured (release, lambda = 2, W =
-/// 0.5, k = 0.001, V0 = 4.64e-4, refined 1920 -> 3840 -> 7680 -> 15360): 3.2 s -> 0.19 s,
-/// the LU at n = 7680 (m = 3760 active nodes) alone had taken 2.1-2.6 s; GMRES takes 1-4
-/// iterations at r = 2 and 4, 2-5 at r = 8; the same mu* to every digit printed. The
-/// Chapter 4-5 stages of `thesis.yaml` (with `LAMBDA_STEP_STALL`): 1289 G instructions
-/// instead of 1917 G, the rolling stages 3-5 times faster (rolling_vs_load 11 s instead of 54 s
-/// of task time), every table equal to the printed digits; no nested solve with r > 2
-/// failed there (one that fails falls back, as at r = 2, to a fresh LU of the fine mesh).
+/// whose cost grows as the cube of its active nodes. GMRES still converges in a few
+/// iterations at r = 8 (docs/tuning.md); a nested solve that fails falls back, as at r = 2,
+/// to a fresh LU of the fine mesh.
 pub(super) const MAX_NESTED_RATIO: usize = 8;
 
 /// r = fine / coarse when the fine mesh nests r = 2, 4, ... `MAX_NESTED_RATIO` elements in

@@ -177,8 +177,8 @@ fn refine_to(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize, three_leve
     loop {
         let estimate = richardson(&fine, &coarse);
         // Two levels in a row without a converged solution: refining will not rescue the
-        // point (a load beyond pull-off walks to its fold on every mesh; doubling to n_max
-        // took 300 s at W = -1.9, lambda = 3 before this stop). It is reported as is.
+        // point (a load beyond pull-off walks to its fold on every mesh, and doubling to
+        // n_max costs minutes: docs/tuning.md). It is reported as is.
         let hopeless = !fine.converged && !coarse.converged;
         if hopeless || estimate <= rel_tol * fine.friction().mu_star.abs() || 2 * fine.mesh.n > n_max {
             // The domain's share, which refining the mesh does not change.

@@ -108,12 +108,10 @@ pub(super) fn invert(model: &Model, plate: &Plate, e: f64, s: &Step) -> Option<S
 /// 0.0283, mu = 0, at r/R = 0.410 with faer's sparse LU and at 0.447 with the band LU
 /// (different step halvings on the way back): the one loading snapped before delta_max and
 /// the other did not, and gamma_c moved from 0.038 to 0.027. The descent ends at r/R =
-/// 0.410165 with both, and at the same r/R and force (7 digits) with both at all 18 points
-/// tried (h/R = 0.02, 0.06, 0.1; gamma/(E h) = 0.002-0.08), in 8-134 iterations (0.1-1.3 s).
-/// Should it not converge, the press-and-withdraw path is the fallback, each of its
-/// states a minimum (`stable_or_descend`). With friction that path's withdrawal had also
-/// cost thousands of Newton iterations in stick-slip cycles (h/R = 0.02, mu = 0.5,
-/// gamma/(E h) = 0.03: 10.5k of the cycle's 12.4k, 72 s of its 79 s).
+/// 0.410165 with both, and at the same r/R and force with both wherever it was tried
+/// (docs/tuning.md). Should it not converge, the press-and-withdraw path is the fallback,
+/// each of its states a minimum (`stable_or_descend`); with friction that path's withdrawal
+/// costs thousands of Newton iterations in stick-slip cycles.
 pub(super) fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option<Step> {
     let bare = plate.frictionless();
     let zero = vec![0.0; model.n_dofs()];
@@ -123,8 +121,8 @@ pub(super) fn jump_in(model: &Model, plate: &Plate, e: f64, step: f64) -> Option
     s.converged.then_some(Step { iterations: 0, ..s })
 }
 
-/// Shifted-Newton iterations of the jump-in's descent (measured: 8-134 up to gamma/(E h) =
-/// 0.08).
+/// Shifted-Newton iterations of the jump-in's descent: about three times the most it takes
+/// up to gamma/(E h) = 0.08 (docs/tuning.md).
 pub(super) const JUMP_IN_DESCENT_ITERATIONS: usize = 400;
 
 /// The adhering state at delta = 0 by continuation (`jump_in`'s fallback; frictionless

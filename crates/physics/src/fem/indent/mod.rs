@@ -168,9 +168,9 @@ fn trial_norm(model: &Model, plate: &Plate, delta: f64, u: &[f64], stick: &[f64]
 /// largest of the last `NONMONOTONE_WINDOW` norms (Grippo, Lampariello and Lucidi, SIAM J.
 /// Numer. Anal. 23, 1986), not below the last one. With friction and contact the residual is
 /// piecewise smooth: a monotone search damps the steps that change the stick/slip and
-/// contact sets, and those sets then change by one node per iteration (measured, h/R = 0.02,
-/// mu = 1, gamma/(E h) = 5e-5, a probe of the gamma_c map: 624 of 924 Newton runs stopped at
-/// 30 iterations, 78 s; with the window of 5 and the watchdog, 6 s; `docs/shell.md`).
+/// contact sets, and those sets then change by one node per iteration: most Newton runs
+/// of a frictional probe of the gamma_c map then end at their iteration limit
+/// (docs/tuning.md).
 pub const NONMONOTONE_WINDOW: usize = 5;
 
 /// Iterations without a new lowest residual after which Newton returns to the lowest and
