@@ -8,6 +8,8 @@
 //!
 //! It reads what a run leaves behind: the pipeline file, the published figures and
 //! `claims` table, and the run report `cache/runs/last.json`.
+//!
+//! One file: the page's sections share one model of the run.
 
 use crate::pipeline::report::{RunReport, Status};
 use crate::pipeline::spec::Pipeline;

@@ -141,12 +141,19 @@ impl Kind for Pareto {
         let ref_ok = converged_col(rt);
         let (mut error, mut time, mut ok, mut n_points) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let (mut covers, mut over) = (Vec::new(), Vec::new());
+        // Newton iterations per row, when every candidate reports them.
+        let mut per_point: Option<Vec<f64>> = Some(Vec::new());
         for c in &p.candidates {
             let t = inputs.table(c)?;
             let points = rows_by_point(t, c, &p.match_on)?;
             let values = t.f64_column(&p.value).with_context(|| format!("candidate `{c}`"))?;
             let walls = t.f64_column("wall_time_s").with_context(|| format!("candidate `{c}`"))?;
             let conv = converged_col(t);
+            per_point = per_point.and_then(|mut v| {
+                let it = t.f64_column("iterations").ok()?;
+                v.push(it.iter().sum::<f64>() / it.len().max(1) as f64);
+                Some(v)
+            });
             let estimates = match &p.error {
                 Some(col) => Some(t.f64_column(col).with_context(|| format!("candidate `{c}`: error column"))?),
                 None => None,
@@ -206,6 +213,10 @@ impl Kind for Pareto {
             t.with_f64("estimate_covers", pick(&covers)).with_f64("error_over_estimate", pick(&over))
         } else {
             t
+        };
+        let t = match per_point {
+            Some(v) => t.with_f64("iterations_per_point", pick(&v)),
+            None => t,
         };
         Ok(t.into())
     }
@@ -339,6 +350,27 @@ mod tests {
     }
 
     #[test]
+    fn newton_iterations_are_averaged_over_a_candidates_points() {
+        let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
+        let cand = stage(&[1.0, 2.0], &[10.0, 20.0], &[1.0, 1.0]).with_f64("iterations", vec![3.0, 8.0]);
+        let tables: BTreeMap<String, &Table> =
+            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
+        let p = ParetoParams {
+            candidates: vec!["c".into()],
+            reference: "ref".into(),
+            match_on: vec!["x".into()],
+            value: "v".into(),
+            tolerance: 0.005,
+            default: "c".into(),
+            error: None,
+            error_resolution: 0.0,
+            time_resolution: 0.0,
+        };
+        let out = Pareto::run(&p, &Inputs { tables }).unwrap().table;
+        assert_eq!(out.f64_column("iterations_per_point").unwrap(), vec![5.5]);
+    }
+
+    #[test]
     fn error_estimates_are_checked_against_the_reference() {
         // Actual errors 0.1 and 0.02; estimates 0.2 (covers) and 0.01 (half the error).
         let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
@@ -358,6 +390,8 @@ mod tests {
         };
         let out = Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table;
         assert_eq!(out.f64_column("estimate_covers").unwrap(), vec![0.5]);
+        // Without an `iterations` column, no iterations per point.
+        assert!(out.column("iterations_per_point").is_none());
         assert!((out.f64_column("error_over_estimate").unwrap()[0] - 2.0).abs() < 1e-9);
         // Without an error column the columns are absent; a missing one names the candidate.
         p.error = None;

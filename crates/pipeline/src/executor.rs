@@ -8,6 +8,8 @@
 //! hash is the hash of its points' outputs, so a recomputed task that produces identical
 //! bytes changes no downstream key (early cutoff). A failing task fails its stage; stages
 //! that need it are skipped; independent stages carry on.
+//!
+//! One file: the waves, the adaptive rounds and the assembly share the run's state.
 
 use crate::backend::{Backend, Local, Task};
 use crate::cache::{Cache, LockMode, ManifestPoint, StageManifest};

@@ -19,6 +19,9 @@
 //! then resubmitted at most `retries` times. Restarted after being killed, a coordinator
 //! reconciles with the scheduler: every job of this cache still queued or running carries
 //! its task list in its comment, and the tasks in it are waited for, not resubmitted.
+//!
+//! One file: submission, polling and reconciliation share the coordinator's view of the
+//! queue.
 
 use super::cache::{is_key, write_atomic, Cache, Entry};
 use super::key::Hash;

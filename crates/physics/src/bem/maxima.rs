@@ -18,6 +18,8 @@ pub struct Maximum {
     pub error_estimate: f64,
     /// Number of BEM solves.
     pub evaluations: usize,
+    /// Newton iterations summed over the solves.
+    pub iterations: usize,
     /// Whether every solve of the search converged.
     pub all_converged: bool,
 }
@@ -33,12 +35,12 @@ pub fn max_over_speed(
     tol: f64,
     solve: impl Fn(&Params) -> (Solution, f64),
 ) -> Maximum {
-    let log: RefCell<Vec<(f64, Friction, bool, f64)>> = RefCell::new(Vec::new());
+    let log: RefCell<Vec<(f64, Friction, bool, f64, usize)>> = RefCell::new(Vec::new());
     let eval = |lv: f64| {
         let v0 = 10f64.powf(lv);
         let (s, estimate) = solve(&Params { v0, ..base.clone() });
         let f = s.friction();
-        log.borrow_mut().push((v0, f, s.converged, estimate));
+        log.borrow_mut().push((v0, f, s.converged, estimate, s.iterations));
         if s.converged && f.mu_star.is_finite() {
             f.mu_star
         } else {
@@ -51,7 +53,14 @@ pub fn max_over_speed(
     let best = log.iter().filter(|e| e.2).min_by(|a, b| (a.0 / v0).ln().abs().total_cmp(&(b.0 / v0).ln().abs()));
     let friction = best.map_or(Friction { mu_star: 0.0, mu_adh: 0.0, mu_comp: 0.0 }, |e| e.1);
     let error_estimate = best.map_or(f64::MAX, |e| e.3);
-    Maximum { v0, friction, error_estimate, evaluations: log.len(), all_converged: log.iter().all(|e| e.2) }
+    Maximum {
+        v0,
+        friction,
+        error_estimate,
+        evaluations: log.len(),
+        iterations: log.iter().map(|e| e.4).sum(),
+        all_converged: log.iter().all(|e| e.2),
+    }
 }
 
 #[cfg(test)]

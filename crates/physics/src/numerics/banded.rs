@@ -11,6 +11,9 @@
 //! skyline, within the band: `Band::lu`), and the LU keeps its multipliers column by column
 //! for the forward substitution; the results are the whole-window algorithm's bit for bit
 //! (tested), with fewer instructions (docs/tuning.md).
+//!
+//! One file: both factorisations share the band storage and its profile; two fifths of it
+//! are their tests.
 
 // Index loops over rows and columns read like the factorisations they implement.
 #![allow(clippy::needless_range_loop)]

@@ -16,18 +16,18 @@ use std::f64::consts::PI;
 /// extrapolation in the logarithm of the parameter through the last two converged states)
 /// or, if that fails or would bring a surface through the other, from the last state; a
 /// failed step is retried with the square root of the factor, down to a factor of 1.001,
-/// and the factor grows again (squared) after two successes in a row.
+/// and the factor grows again (squared, up to `max_factor`) after two successes in a row.
 /// Returns the solution at `to` (converged or the failed last trial) and the Newton
 /// iterations spent.
 pub(super) fn continue_geometric(
     from: f64,
     to: f64,
     mut factor: f64,
+    max_factor: f64,
     start: Solution,
     mut step: impl FnMut(f64, &[f64], f64) -> Solution,
 ) -> (Solution, usize) {
-    // Steps grow after successes (below), up to the square of the first factor (at most 4).
-    let max_factor = (factor * factor).min(4.0).max(factor);
+    let max_factor = max_factor.max(factor);
     let mut iterations = 0;
     let mut value = from;
     let mut last = start;
@@ -76,6 +76,12 @@ pub(super) fn continue_geometric(
     }
     (last, iterations)
 }
+
+/// The largest factor of one step of the speed continuation at lambda up to `LAMBDA_START`
+/// (4 above it). Far below and far above the
+/// relaxation speeds the state hardly changes over a decade of V, and the secant predictor
+/// in log V lands within Newton's basin; steps of 4 spent most of a point's iterations there.
+pub(super) const SPEED_MAX_FACTOR: f64 = 64.0;
 
 /// The smallest lambda at which Newton starts (soft, long-range adhesion converges from a
 /// Hertzian guess); larger lambda are reached by continuation.
@@ -133,7 +139,8 @@ pub(super) fn lambda_resolved(mesh: Mesh) -> f64 {
     (PI / (4.0 * mesh.a())).sqrt()
 }
 
-/// Newton on `mesh` from the linear interpolation of `coarse` (same parameters).
+/// Newton on `mesh` from the linear interpolation of `coarse` (same parameters; `mesh` may
+/// also be coarser than `coarse.mesh`).
 pub(super) fn interpolated_newton(
     coarse: &Solution,
     mesh: Mesh,
@@ -197,7 +204,10 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                 let it = s.iterations;
                 (s, it)
             } else {
-                continue_geometric(v_start, v_target, 4.0, sol, |v, h, delta| {
+                // Long steps only at the soft start's lambda: at large lambda a change of speed
+                // can snap the crack front across a lattice fold.
+                let max_factor = if lambda <= LAMBDA_START { SPEED_MAX_FACTOR } else { 4.0 };
+                continue_geometric(v_start, v_target, 4.0, max_factor, sol, |v, h, delta| {
                     let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
                     newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
                 })
@@ -221,18 +231,19 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                     // Finer levels carry the stiff, large-lambda part of the path: smaller steps.
                     let factor = if i == 0 { 1.5 } else { 1.1 };
                     let kern = MeshKernel::new(mesh.n, mesh.a(), v, params.k, &params.spectrum);
-                    let (s, it) = continue_geometric(from, cap, factor, sol, |lambda, h, delta| {
-                        let op = Operator::scaled(mesh, &kern, lambda);
-                        newton_limited(
-                            &op,
-                            &at(lambda, v),
-                            Control::Load(params.w),
-                            h.to_vec(),
-                            delta,
-                            Limits { iterations: LAMBDA_STEP_ITERATIONS, stall: LAMBDA_STEP_STALL },
-                            pre,
-                        )
-                    });
+                    let (s, it) =
+                        continue_geometric(from, cap, factor, (factor * factor).min(4.0), sol, |lambda, h, delta| {
+                            let op = Operator::scaled(mesh, &kern, lambda);
+                            newton_limited(
+                                &op,
+                                &at(lambda, v),
+                                Control::Load(params.w),
+                                h.to_vec(),
+                                delta,
+                                Limits { iterations: LAMBDA_STEP_ITERATIONS, stall: LAMBDA_STEP_STALL },
+                                pre,
+                            )
+                        });
                     sol = s;
                     iterations += it;
                     if !sol.converged {

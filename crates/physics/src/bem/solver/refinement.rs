@@ -119,6 +119,22 @@ pub(super) fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Optio
     }
 }
 
+/// The solution on a coarser `mesh` of the same domain, from Newton started at the
+/// restriction (linear interpolation) of `fine`: the continuation path is not walked again
+/// for the third level of `observed_estimate`. If Newton fails there, the full continuation
+/// on `mesh`.
+fn coarsen(fine: &Solution, mesh: Mesh) -> Solution {
+    let s = interpolated_newton(fine, mesh, 40, &mut Preconditioner::default());
+    if s.converged {
+        s
+    } else {
+        let mut full = solve(&fine.params, mesh);
+        full.iterations += s.iterations;
+        full.factorizations += s.factorizations;
+        full
+    }
+}
+
 /// The two shares of the error of mu* that `solve_to_tolerance` reports, without their
 /// safety factors: the mesh's (from three levels, `observed_estimate`) and the domain's
 /// (|mu*| `domain_rel_error`).
@@ -191,7 +207,7 @@ fn refine_to(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize, three_leve
             let coarser = match coarser {
                 Some(c) => Some(c),
                 None if !hopeless && fine.converged && coarse.mesh.n / 2 >= 8 => {
-                    let c = solve(params, Mesh { n: coarse.mesh.n / 2, ..mesh });
+                    let c = coarsen(&coarse, Mesh { n: coarse.mesh.n / 2, ..mesh });
                     fine.iterations += c.iterations;
                     fine.factorizations += c.factorizations;
                     Some(c)

@@ -6,6 +6,9 @@
 //!
 //! Units: lengths of the mesh, stresses in units of E (E = 1 here is fine: the outputs are
 //! the dimensionless F R/(E h^3), delta/R, p/E).
+//!
+//! One file with its tests apart (`tests.rs`): Newton at a plate displacement, its line
+//! search and its starts are one algorithm, read together.
 
 use super::adhesion::Tangent;
 use super::contact::{ContactState, Plate};
