@@ -24,6 +24,15 @@ pub struct Maximum {
     pub all_converged: bool,
 }
 
+/// One solve of the search.
+struct Solve {
+    v0: f64,
+    friction: Friction,
+    converged: bool,
+    estimate: f64,
+    iterations: usize,
+}
+
 /// Searches V0 in [v0_min, v0_max] with `grid` log-spaced points, refining to `tol` in
 /// log10 V0; `solve` gives the solution of a point and the error estimate of its mu*.
 /// Unconverged solves count as -inf (never the maximum) and are reported.
@@ -35,12 +44,12 @@ pub fn max_over_speed(
     tol: f64,
     solve: impl Fn(&Params) -> (Solution, f64),
 ) -> Maximum {
-    let log: RefCell<Vec<(f64, Friction, bool, f64, usize)>> = RefCell::new(Vec::new());
+    let log: RefCell<Vec<Solve>> = RefCell::new(Vec::new());
     let eval = |lv: f64| {
         let v0 = 10f64.powf(lv);
         let (s, estimate) = solve(&Params { v0, ..base.clone() });
         let f = s.friction();
-        log.borrow_mut().push((v0, f, s.converged, estimate, s.iterations));
+        log.borrow_mut().push(Solve { v0, friction: f, converged: s.converged, estimate, iterations: s.iterations });
         if s.converged && f.mu_star.is_finite() {
             f.mu_star
         } else {
@@ -50,16 +59,17 @@ pub fn max_over_speed(
     let (lv, _) = maximize_climbing(eval, v0_min.log10(), v0_max.log10(), grid, tol);
     let log = log.into_inner();
     let v0 = 10f64.powf(lv);
-    let best = log.iter().filter(|e| e.2).min_by(|a, b| (a.0 / v0).ln().abs().total_cmp(&(b.0 / v0).ln().abs()));
-    let friction = best.map_or(Friction { mu_star: 0.0, mu_adh: 0.0, mu_comp: 0.0 }, |e| e.1);
-    let error_estimate = best.map_or(f64::MAX, |e| e.3);
+    let best =
+        log.iter().filter(|e| e.converged).min_by(|a, b| (a.v0 / v0).ln().abs().total_cmp(&(b.v0 / v0).ln().abs()));
+    let friction = best.map_or(Friction { mu_star: 0.0, mu_adh: 0.0, mu_comp: 0.0 }, |e| e.friction);
+    let error_estimate = best.map_or(f64::MAX, |e| e.estimate);
     Maximum {
         v0,
         friction,
         error_estimate,
         evaluations: log.len(),
-        iterations: log.iter().map(|e| e.4).sum(),
-        all_converged: log.iter().all(|e| e.2),
+        iterations: log.iter().map(|e| e.iterations).sum(),
+        all_converged: log.iter().all(|e| e.converged),
     }
 }
 
