@@ -77,7 +77,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 22;
+    const VERSION: u32 = 24;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
@@ -109,6 +109,7 @@ impl Kind for FemBuckling {
         "complete",
         "max_iterations",
         "max_residual",
+        "lu_factorizations",
         "wall_time_s",
     ];
     type Params = BucklingParams;
@@ -135,16 +136,18 @@ impl Kind for FemBuckling {
             let (w, w_error) =
                 if p.dissipation && c.complete { (c.dissipated(), c.dissipated_error()) } else { (0.0, 0.0) };
             let friction = if p.dissipation && c.complete { c.friction_work(&plate.weights) } else { 0.0 };
-            (b, w, w_error, (c, friction))
+            (b, w, w_error, (c, friction, model.factorizations()))
         };
-        let ((b, w, w_error, (c, friction)), finer) = if p.mesh_study {
+        let ((b, w, w_error, (c, friction, lus)), finer) = if p.mesh_study {
             let (this, finer) = rayon::join(|| cycle_on(n), || cycle_on(2 * n));
             (this, Some(finer))
         } else {
             (cycle_on(n), None)
         };
-        let study =
-            finer.as_ref().map(|(fb, fw, _, (fc, _))| MeshStudy::of(Outcome::of(&b, w, &c), Outcome::of(fb, *fw, fc)));
+        let study = finer
+            .as_ref()
+            .map(|(fb, fw, _, (fc, _, _))| MeshStudy::of(Outcome::of(&b, w, &c), Outcome::of(fb, *fw, fc)));
+        let lus = lus + finer.as_ref().map_or(0, |(_, _, _, (_, _, n))| *n);
         let fb = m.f_bar(p.h_over_R);
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
@@ -196,6 +199,7 @@ impl Kind for FemBuckling {
             .with("complete", ColumnData::Bool(vec![c.complete]))
             .with("max_iterations", ColumnData::I64(vec![iterations as i64]))
             .with_f64("max_residual", vec![finite(residual)])
+            .with("lu_factorizations", ColumnData::I64(vec![lus as i64]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
             .into())
     }
@@ -241,7 +245,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 13;
+    const VERSION: u32 = 14;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];

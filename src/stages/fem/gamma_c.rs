@@ -61,7 +61,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 15;
+    const VERSION: u32 = 17;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
@@ -82,6 +82,7 @@ impl Kind for FemGammaC {
         "F_buckling_bar",
         "probes",
         "unconverged_probes",
+        "lu_factorizations",
         "wall_time_s",
     ];
     type Params = GammaCParams;
@@ -129,6 +130,7 @@ impl Kind for FemGammaC {
             .with_f64("F_buckling_bar", vec![finite(last.map_or(0.0, |j| j.force_before * m.f_bar(p.h_over_R)))])
             .with("probes", ColumnData::I64(vec![b.probes.len() as i64]))
             .with("unconverged_probes", ColumnData::I64(vec![unconverged as i64]))
+            .with("lu_factorizations", ColumnData::I64(vec![model.factorizations() as i64]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
             .into())
     }

@@ -245,17 +245,46 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     let mut inverted = false;
     let mut dd = base;
     let mut cuts = 0;
+    let smallest = base / 2f64.powi(opt.max_cuts as i32);
+    // While the fold of the flattened branch is sought (tangent criterion): the smallest
+    // plate displacement whose step failed or left the branch since the last state reached
+    // it. A step grown again after a success goes no further than there: the failure is
+    // tried again from the nearer state (with friction, a step that failed from one state
+    // can succeed from a nearer one), but not overshot, which near a fold fails as surely
+    // (docs/shell.md, "Cost").
+    let mut failed_at: Option<f64> = None;
     while cur.delta < opt.delta_max * (1.0 - 1e-12) {
-        let target = (cur.delta + dd).min(opt.delta_max);
-        let mut s = solve_from(model, plate, e, target, &cur, Options::default());
         let past_fold = limit_point && !inverted && cycle.buckling.is_none();
-        if !s.converged && cuts >= opt.max_cuts {
+        let grown = (cur.delta + dd).min(opt.delta_max);
+        let target = match failed_at {
+            Some(f) if past_fold && f > cur.delta => grown.min(f),
+            _ => grown,
+        };
+        let capped = target < grown;
+        // A capped step no longer than the smallest counts as one.
+        let at_smallest = cuts >= opt.max_cuts || (capped && target - cur.delta <= smallest * (1.0 + 1e-9));
+        // The next, shorter step: half of this one; for a capped step, the largest
+        // base / 2^cuts at most half of it (dd stays base / 2^cuts).
+        let cut = |cuts: &mut u32, dd: &mut f64| {
+            if capped {
+                *cuts = ((2.0 * base / (target - cur.delta)).log2().ceil().max(1.0) as u32).min(opt.max_cuts);
+                *dd = base / 2f64.powi(*cuts as i32);
+            } else {
+                *cuts += 1;
+                *dd *= 0.5;
+            }
+        };
+        let mut s = solve_from(model, plate, e, target, &cur, Options::default());
+        if !s.converged && at_smallest {
+            cuts = cuts.max(opt.max_cuts);
             s = confirm_failure(model, plate, e, target, &cur, s);
         }
         if !s.converged {
-            if cuts < opt.max_cuts {
-                cuts += 1;
-                dd *= 0.5;
+            if !at_smallest {
+                cut(&mut cuts, &mut dd);
+                if past_fold {
+                    failed_at = Some(failed_at.map_or(target, |f| f.min(target)));
+                }
                 continue;
             }
             if !past_fold {
@@ -266,7 +295,11 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         s.stable = s.converged && stable(&s);
         let leaves = |s: &Step| !s.stable || (limit_point && is_inverted(model, s));
-        if limit_point && s.converged && !inverted && cycle.buckling.is_none() && leaves(&s) && cuts < opt.max_cuts {
+        let leaves_branch = limit_point && s.converged && !inverted && cycle.buckling.is_none() && leaves(&s);
+        if leaves_branch && at_smallest {
+            cuts = cuts.max(opt.max_cuts);
+        }
+        if leaves_branch && !at_smallest {
             // Under the tangent criterion a step that lands off the flattened branch is taken
             // again shorter, as a failed one is: the loss of stability is where the shortest
             // step still leaves (the lift threshold's test is left as it was). A long
@@ -277,8 +310,8 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             // runs on to 39.46 F_c at delta/R = 0.478. Solving only the step again from the
             // bisection's last stable state is not enough: with a dimple of 1e-3 h a state
             // of the bisection itself landed off the branch, at 34.1 F_c instead of 36.36).
-            cuts += 1;
-            dd *= 0.5;
+            cut(&mut cuts, &mut dd);
+            failed_at = Some(failed_at.map_or(target, |f| f.min(target)));
             continue;
         }
         if !inverted && leaves(&s) {
@@ -365,6 +398,9 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         }
         loading.push(CyclePoint { step: s.clone(), leg: Leg::Loading, inverted });
         cur = s;
+        if failed_at.is_some_and(|f| cur.delta >= f) {
+            failed_at = None;
+        }
         if cuts > 0 {
             cuts -= 1;
             dd = (2.0 * dd).min(base);
