@@ -349,24 +349,28 @@ mod tests {
         assert_eq!(r, vec![false, false, true]);
     }
 
-    #[test]
-    fn newton_iterations_are_averaged_over_a_candidates_points() {
-        let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
-        let cand = stage(&[1.0, 2.0], &[10.0, 20.0], &[1.0, 1.0]).with_f64("iterations", vec![3.0, 8.0]);
-        let tables: BTreeMap<String, &Table> =
-            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
-        let p = ParetoParams {
+    /// Candidate `c` against reference `ref`, points matched on `x`, value `v`.
+    fn one_candidate(error: Option<&str>) -> ParetoParams {
+        ParetoParams {
             candidates: vec!["c".into()],
             reference: "ref".into(),
             match_on: vec!["x".into()],
             value: "v".into(),
             tolerance: 0.005,
             default: "c".into(),
-            error: None,
+            error: error.map(String::from),
             error_resolution: 0.0,
             time_resolution: 0.0,
-        };
-        let out = Pareto::run(&p, &Inputs { tables }).unwrap().table;
+        }
+    }
+
+    #[test]
+    fn newton_iterations_are_averaged_over_a_candidates_points() {
+        let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
+        let cand = stage(&[1.0, 2.0], &[10.0, 20.0], &[1.0, 1.0]).with_f64("iterations", vec![3.0, 8.0]);
+        let tables: BTreeMap<String, &Table> =
+            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
+        let out = Pareto::run(&one_candidate(None), &Inputs { tables }).unwrap().table;
         assert_eq!(out.f64_column("iterations_per_point").unwrap(), vec![5.5]);
     }
 
@@ -377,17 +381,7 @@ mod tests {
         let cand = stage(&[1.0, 2.0], &[10.1, 19.98], &[1.0, 1.0]).with_f64("err", vec![0.2, 0.01]);
         let tables: BTreeMap<String, &Table> =
             [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
-        let mut p = ParetoParams {
-            candidates: vec!["c".into()],
-            reference: "ref".into(),
-            match_on: vec!["x".into()],
-            value: "v".into(),
-            tolerance: 0.005,
-            default: "c".into(),
-            error: Some("err".into()),
-            error_resolution: 0.0,
-            time_resolution: 0.0,
-        };
+        let mut p = one_candidate(Some("err"));
         let out = Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table;
         assert_eq!(out.f64_column("estimate_covers").unwrap(), vec![0.5]);
         // Without an `iterations` column, no iterations per point.

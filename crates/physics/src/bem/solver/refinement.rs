@@ -107,32 +107,27 @@ pub(super) fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Optio
         }
     }
     let s = interpolated_newton(coarse, mesh, 40, &mut pre);
-    if s.converged {
-        *carried = pre.active;
-        s
-    } else {
-        *carried = None;
-        let mut full = solve(&coarse.params, mesh);
-        full.iterations += s.iterations;
-        full.factorizations += s.factorizations;
-        full
-    }
+    *carried = if s.converged { pre.active } else { None };
+    or_continuation(s, mesh)
 }
 
 /// The solution on a coarser `mesh` of the same domain, from Newton started at the
 /// restriction (linear interpolation) of `fine`: the continuation path is not walked again
-/// for the third level of `observed_estimate`. If Newton fails there, the full continuation
-/// on `mesh`.
+/// for the third level of `observed_estimate`.
 fn coarsen(fine: &Solution, mesh: Mesh) -> Solution {
-    let s = interpolated_newton(fine, mesh, 40, &mut Preconditioner::default());
+    or_continuation(interpolated_newton(fine, mesh, 40, &mut Preconditioner::default()), mesh)
+}
+
+/// `s` if it converged, else the full continuation on `mesh` (its iterations and
+/// factorisations counting those of `s`).
+fn or_continuation(s: Solution, mesh: Mesh) -> Solution {
     if s.converged {
-        s
-    } else {
-        let mut full = solve(&fine.params, mesh);
-        full.iterations += s.iterations;
-        full.factorizations += s.factorizations;
-        full
+        return s;
     }
+    let mut full = solve(&s.params, mesh);
+    full.iterations += s.iterations;
+    full.factorizations += s.factorizations;
+    full
 }
 
 /// The two shares of the error of mu* that `solve_to_tolerance` reports, without their
