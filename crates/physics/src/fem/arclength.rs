@@ -177,7 +177,7 @@ pub fn continue_path(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::indent::{dimple, load_path, solve_at};
+    use crate::fem::indent::{inverted_from, load_path};
     use crate::fem::mesh::ShellMesh;
     use crate::fem::system::Base;
 
@@ -191,17 +191,7 @@ mod tests {
         let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, 0.45, Base::Clamped);
         let plate = Plate::new(&model.mesh, e, 1000.0);
         let flat = load_path(&model, &plate, e, 0.25 * r, 10, 4).pop().unwrap();
-        let a = 0.8 * flat.contact.radius;
-        let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
-        let inv = solve_at(
-            &model,
-            &plate,
-            e,
-            flat.delta,
-            &start,
-            &flat.contact.stick,
-            Options { max_iterations: 60, ..Options::default() },
-        );
+        let inv = inverted_from(&model, &plate, e, &flat, r, h);
         assert!(inv.converged && inv.stable);
         let opt = ArcOptions {
             ds: 0.02,

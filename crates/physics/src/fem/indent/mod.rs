@@ -496,6 +496,17 @@ pub fn load_path(model: &Model, plate: &Plate, e: f64, delta_max: f64, steps: us
     out
 }
 
+/// The inverted state at the plate displacement of the flattened state `flat` of a shell of
+/// radius `r` and thickness `h`: Newton from `flat` with a dimple of 0.8 times its contact
+/// radius pushed in (tests of the inverted branch).
+#[cfg(test)]
+pub(crate) fn inverted_from(model: &Model, plate: &Plate, e: f64, flat: &Step, r: f64, h: f64) -> Step {
+    let a = 0.8 * flat.contact.radius;
+    let start = dimple(model, &flat.u, a, a * a / (r + 0.5 * h));
+    let opt = Options { max_iterations: 60, ..Options::default() };
+    solve_at(model, plate, e, flat.delta, &start, &flat.contact.stick, opt)
+}
+
 /// Pushes the central part (r < radius) of a state down by a smooth dimple of depth `depth`
 /// (through the whole thickness): the perturbation that leads Newton from the flattened
 /// state to the inverted one.

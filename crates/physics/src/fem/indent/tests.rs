@@ -77,17 +77,7 @@ fn flattened_and_inverted_states_coexist_at_large_indentation() {
     let path = load_path(&model, &plate, e, 0.25 * r, 10, 6);
     let flat = path.last().unwrap();
     assert!(flat.converged && flat.stable && (flat.delta / r - 0.25).abs() < 1e-12);
-    let a = 0.8 * flat.contact.radius;
-    let start = dimple(&model, &flat.u, a, a * a / (r + 0.5 * h));
-    let inverted = solve_at(
-        &model,
-        &plate,
-        e,
-        flat.delta,
-        &start,
-        &flat.contact.stick,
-        Options { max_iterations: 60, ..Options::default() },
-    );
+    let inverted = inverted_from(&model, &plate, e, flat, r, h);
     assert!(inverted.converged && inverted.stable);
     let fbar = |f: f64| f * r / (e * h.powi(3));
     assert!((fbar(flat.contact.force) - 13.16).abs() < 0.05, "{}", fbar(flat.contact.force));
