@@ -1,6 +1,7 @@
 //! Preconditioning GMRES: a dense LU (faer) of the near-contact block of the Jacobian
 //! (`ActiveLu`), rebuilt when Newton's steps lose their balance, with a two-grid variant
-//! for large meshes.
+//! for large meshes: the LU of a coarser mesh, carried from mesh sequencing or factored
+//! from the state restricted to half the elements.
 
 use super::system::{Control, System};
 use crate::numerics::gmres::gmres;
@@ -44,6 +45,17 @@ impl ActiveLu {
             (false, false) => corner,
         });
         ActiveLu { n, lu: mat.partial_piv_lu(), idx, d, g: sys.op.nodes_fft.clone() }
+    }
+
+    /// The active LU of the mesh with half the elements at the state restricted from
+    /// `sys`'s (dP/dH averaged over each pair of elements), as a two-grid preconditioner
+    /// of `sys` (`solve_two_grid`): a factorization of about an eighth of the cost of the
+    /// fine mesh's own. None when the mesh does not halve.
+    pub(super) fn restricted(sys: &System, dp: &[f64]) -> Option<ActiveLu> {
+        let op = sys.op.coarsened()?;
+        let coarse = System::new(&op, sys.control);
+        let dp: Vec<f64> = dp.chunks_exact(2).map(|p| 0.5 * (p[0] + p[1])).collect();
+        Some(ActiveLu::new(&coarse, &dp, DROP))
     }
 
     pub(super) fn solve(&self, b: &[f64]) -> Vec<f64> {
@@ -118,6 +130,9 @@ pub(super) struct Preconditioner {
     pub(super) first: Option<usize>,
     /// GMRES iterations beyond `first` summed over the later steps.
     pub(super) excess: usize,
+    /// Every mesh on its own LU, never a coarse one (the reference the two-grid
+    /// preconditioners are tested against).
+    pub(super) single_grid: bool,
 }
 
 /// A frozen active LU of m nodes is rebuilt for the next Newton step once its `excess`
@@ -129,18 +144,19 @@ pub(super) struct Preconditioner {
 /// stages of `thesis.yaml`: docs/tuning.md). The counts, not times, decide: deterministic.
 pub(super) const REBUILD_BALANCE: f64 = 0.2;
 
-/// The fewest elements of a mesh for which the two-grid preconditioner is tried instead of
-/// a fresh active LU, whose cost grows as the cube of the active nodes: from about 2000
-/// elements on, the LU dominates a solve (docs/tuning.md).
-pub(super) const TWO_GRID_MIN_N: usize = 2000;
+/// The fewest elements of a mesh for which a coarse mesh's LU is tried (nested) before a
+/// fresh active LU of its own, whose cost grows as the cube of the active nodes. Below
+/// about 500 elements the LU is cheap and the extra GMRES iterations are not; above, a
+/// solve's own LUs dominate its time (docs/tuning.md).
+pub(super) const TWO_GRID_MIN_N: usize = 500;
 
 /// The largest ratio of fine to coarse elements at which a coarse LU is used as a nested
 /// preconditioner (`ActiveLu::solve_nested`): `solve_to_tolerance` carries the LU of its
-/// first refinement through the next ones instead of factoring each coarse level anew,
-/// whose cost grows as the cube of its active nodes. GMRES still converges in a few
-/// iterations at r = 8 (docs/tuning.md); a nested solve that fails falls back, as at r = 2,
-/// to a fresh LU of the fine mesh.
-pub(super) const MAX_NESTED_RATIO: usize = 8;
+/// first refinement through the next ones instead of factoring each coarse level anew.
+/// GMRES converges in 1-5 iterations up to r = 32 on the refinements of `thesis.yaml`
+/// (docs/tuning.md); a carried LU that stalls is replaced by a fresh one of the state
+/// restricted to half the elements (`ActiveLu::restricted`).
+pub(super) const MAX_NESTED_RATIO: usize = 64;
 
 /// r = fine / coarse when the fine mesh nests r = 2, 4, ... `MAX_NESTED_RATIO` elements in
 /// each coarse one.
@@ -159,14 +175,37 @@ pub(super) fn lu_solve(lu: &PartialPivLu<f64>, v: &[f64]) -> Vec<f64> {
 
 impl Preconditioner {
     /// The Newton step J d = rhs to `tol`: GMRES with the frozen preconditioner; if it
-    /// stalls, again with a fresh one; if that stalls too, an exact LU of the whole J.
+    /// stalls, again with a fresh one; if that stalls too, an exact LU of the whole J. On
+    /// meshes of at least `TWO_GRID_MIN_N` elements the preconditioner is first a coarse
+    /// mesh's LU (nested): the one carried or, when that stalls or has cost more than a
+    /// factorization, a fresh one of the state restricted to half the elements
+    /// (`ActiveLu::restricted`); where that does not converge either, the mesh gets its own.
     pub(super) fn newton_step(&mut self, sys: &System, dp: &[f64], rhs: &[f64], tol: f64) -> Vec<f64> {
         let apply = |v: &[f64]| sys.apply_jacobian(dp, v);
         let n = sys.op.mesh.n;
-        if let Some(coarse) = self.active.as_ref().filter(|a| nested_ratio(a.n, n).is_some() && n >= TWO_GRID_MIN_N) {
-            let g = gmres(apply, |v| coarse.solve_nested(v), rhs, tol, GMRES_ITERATIONS);
-            if g.converged {
-                return g.x;
+        let own = self.active.as_ref().is_some_and(|a| a.n == n);
+        if n >= TWO_GRID_MIN_N && !own && !self.single_grid {
+            let mut rebuilt = false;
+            for fresh in [false, true] {
+                let stale = self.active.as_ref().is_none_or(|a| {
+                    nested_ratio(a.n, n).is_none() || self.excess as f64 > REBUILD_BALANCE * a.idx.len() as f64 / 3.0
+                });
+                if (fresh || stale) && !rebuilt {
+                    let Some(coarse) = ActiveLu::restricted(sys, dp) else { break };
+                    self.active = Some(coarse);
+                    self.factorizations += 1;
+                    (self.first, self.excess) = (None, 0);
+                    rebuilt = true;
+                } else if fresh {
+                    break;
+                }
+                let coarse = self.active.as_ref().unwrap();
+                let g = gmres(apply, |v| coarse.solve_nested(v), rhs, tol, GMRES_ITERATIONS);
+                if g.converged {
+                    let first = *self.first.get_or_insert(g.iterations);
+                    self.excess += g.iterations.saturating_sub(first);
+                    return g.x;
+                }
             }
             // Not good enough here: this mesh gets its own LU from now on.
             self.active = None;

@@ -17,7 +17,10 @@ pub(super) struct Operator {
     pub(super) nodes: Vec<f64>,
     /// The same as an FFT-based product (O(n log n)).
     pub(super) nodes_fft: Toeplitz,
-    /// Node-to-edge products (edge e, element m: diagonal e - m + n - 1), by FFT.
+    /// Node-to-edge coefficients (edge e, element m: diagonal e - m + n - 1), times
+    /// 2 lambda/pi.
+    pub(super) edges: Vec<f64>,
+    /// The same as an FFT-based product.
     pub(super) edges_fft: Toeplitz,
 }
 
@@ -36,7 +39,31 @@ impl Operator {
         let edges: Vec<f64> = kern.edges.iter().map(|c| c * s).collect();
         let nodes_fft = Toeplitz::new(&nodes, n, n);
         let edges_fft = Toeplitz::new(&edges, n, n + 1);
-        Operator { mesh, lambda, nodes, nodes_fft, edges_fft }
+        Operator { mesh, lambda, nodes, nodes_fft, edges, edges_fft }
+    }
+
+    /// The operator of the mesh with half the elements (coarse element i = fine elements
+    /// 2i and 2i + 1), when n is even: exactly `Operator::new` on that mesh, from this
+    /// one's coefficients and without evaluating the kernel again. A coarse node is the
+    /// fine edge between its two elements, and a coarse element's influence is the sum of
+    /// its two fine elements' (Eq. 4.12 is linear in the pressure); a coarse edge is every
+    /// other fine edge.
+    pub(super) fn coarsened(&self) -> Option<Operator> {
+        let n = self.mesh.n;
+        if n % 2 == 1 || n < 4 {
+            return None;
+        }
+        let nc = n / 2;
+        let mesh = Mesh { n: nc, ..self.mesh };
+        // Fine edge e from fine element m: edges[e - m + n - 1].
+        let pair = |e: usize, j: usize| self.edges[e + n - 1 - 2 * j] + self.edges[e + n - 2 - 2 * j];
+        // Coarse diagonal k = I - J + nc - 1 (I: coarse node = fine edge 2I + 1): take J = nc - 1.
+        let nodes: Vec<f64> = (0..2 * nc - 1).map(|k| pair(2 * k + 1, nc - 1)).collect();
+        // Coarse edge E (fine edge 2E) from coarse element J: diagonal E - J + nc - 1.
+        let edges: Vec<f64> = (0..2 * nc).map(|k| pair(2 * k, nc - 1)).collect();
+        let nodes_fft = Toeplitz::new(&nodes, nc, nc);
+        let edges_fft = Toeplitz::new(&edges, nc, nc + 1);
+        Some(Operator { mesh, lambda: self.lambda, nodes, nodes_fft, edges, edges_fft })
     }
 
     pub(super) fn displacement(&self, p: &[f64]) -> Vec<f64> {

@@ -161,8 +161,10 @@ fn a_refinement_is_preconditioned_by_the_coarse_meshs_lu() {
     let fine = Mesh { n: 2400, ..coarse.mesh };
     let two_grid = refine(&coarse, fine);
     assert!(two_grid.converged && two_grid.factorizations == 1, "{} LU", two_grid.factorizations);
-    let direct = interpolated_newton(&coarse, fine, 40, &mut Preconditioner::default());
+    let mut single = Preconditioner { single_grid: true, ..Preconditioner::default() };
+    let direct = interpolated_newton(&coarse, fine, 40, &mut single);
     assert!(direct.converged && direct.factorizations >= 1);
+    assert_eq!(single.active.as_ref().map(|a| a.n), Some(2400));
     let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
     assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
     assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
@@ -187,10 +189,57 @@ fn a_carried_lu_preconditions_refinements_four_and_eight_times_finer() {
         let (a, b) = (s.friction().mu_star, fresh.friction().mu_star);
         assert!((a - b).abs() < 1e-9 * a.abs(), "n = {n}: {a} vs {b}");
     }
-    // Sixteen times finer is beyond MAX_NESTED_RATIO: the coarse level would be factored.
-    assert_eq!(nested_ratio(1000, 16000), None);
+    // 128 times finer is beyond MAX_NESTED_RATIO, and a ratio of 3 does not nest: a
+    // fresh coarse LU would be factored.
+    assert_eq!(nested_ratio(1000, 128_000), None);
     assert_eq!(nested_ratio(1000, 3000), None);
-    assert_eq!(nested_ratio(1000, 8000), Some(8));
+    assert_eq!(nested_ratio(1000, 64_000), Some(64));
+}
+
+#[test]
+fn the_coarsened_operator_is_the_coarse_meshs_own() {
+    // The operator of n/2 elements summed from the fine edge coefficients equals the one
+    // built from the kernel on that mesh (to rounding), for sliding and for rest.
+    for v in [0.0, 0.37] {
+        let mesh = Mesh { n: 64, half_length: 3.0 };
+        let spectrum = crate::rheology::Spectrum::default();
+        let fine = Operator::new(mesh, 2.0, 0.1, &spectrum, v);
+        let coarse = Operator::new(Mesh { n: 32, ..mesh }, 2.0, 0.1, &spectrum, v);
+        let summed = fine.coarsened().unwrap();
+        assert_eq!(summed.mesh, coarse.mesh);
+        for (a, b) in [(&summed.nodes, &coarse.nodes), (&summed.edges, &coarse.edges)] {
+            assert_eq!(a.len(), b.len());
+            let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let worst = a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(worst < 1e-12 * scale, "v = {v}: {worst:e} of {scale:e}");
+        }
+    }
+    assert!(Operator::new(Mesh { n: 33, half_length: 3.0 }, 1.0, 0.1, &Default::default(), 0.0).coarsened().is_none());
+}
+
+#[test]
+fn a_mesh_without_a_carried_lu_is_preconditioned_by_its_restriction() {
+    // Newton on 2400 elements from the interpolated 1200-element solution, with no LU at
+    // hand: it factors the state restricted to 1200 elements (about half the fine mesh's
+    // active nodes), never the fine Jacobian, and lands on the equilibrium of Newton on the
+    // fine mesh's own LU.
+    let params = Params::sls(3.0, 0.1, 0.1, 1e-2);
+    let coarse = solve(&params, Mesh { n: 1200, half_length: 6.0 });
+    assert!(coarse.converged);
+    let fine = Mesh { n: 2400, ..coarse.mesh };
+    let mut pre = Preconditioner::default();
+    let two_grid = interpolated_newton(&coarse, fine, 40, &mut pre);
+    let lu = pre.active.as_ref().unwrap();
+    assert!(two_grid.converged && two_grid.factorizations >= 1, "{} LU", two_grid.factorizations);
+    assert_eq!(lu.n, 1200);
+    let mut single = Preconditioner { single_grid: true, ..Preconditioner::default() };
+    let direct = interpolated_newton(&coarse, fine, 40, &mut single);
+    let own = single.active.as_ref().unwrap();
+    assert!(direct.converged && own.n == 2400);
+    assert!(lu.idx.len() * 10 < own.idx.len() * 6, "{} vs {} active nodes", lu.idx.len(), own.idx.len());
+    let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
+    assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
+    assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
 }
 
 #[test]
