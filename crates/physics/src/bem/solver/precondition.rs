@@ -4,7 +4,7 @@
 //! from the state restricted to half the elements.
 
 use super::system::{Control, System};
-use crate::numerics::gmres::gmres;
+use crate::numerics::gmres::{gmres, Gmres};
 use crate::numerics::toeplitz::Toeplitz;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
@@ -187,24 +187,17 @@ impl Preconditioner {
         if n >= TWO_GRID_MIN_N && !own && !self.single_grid {
             let mut rebuilt = false;
             for fresh in [false, true] {
-                let stale = self.active.as_ref().is_none_or(|a| {
-                    nested_ratio(a.n, n).is_none() || self.excess as f64 > REBUILD_BALANCE * a.idx.len() as f64 / 3.0
-                });
+                let stale = self.stale(|a| nested_ratio(a.n, n).is_none());
                 if (fresh || stale) && !rebuilt {
                     let Some(coarse) = ActiveLu::restricted(sys, dp) else { break };
-                    self.active = Some(coarse);
-                    self.factorizations += 1;
-                    (self.first, self.excess) = (None, 0);
+                    self.install(coarse);
                     rebuilt = true;
                 } else if fresh {
                     break;
                 }
                 let coarse = self.active.as_ref().unwrap();
-                let g = gmres(apply, |v| coarse.solve_nested(v), rhs, tol, GMRES_ITERATIONS);
-                if g.converged {
-                    let first = *self.first.get_or_insert(g.iterations);
-                    self.excess += g.iterations.saturating_sub(first);
-                    return g.x;
+                if let Some(x) = self.settle(gmres(apply, |v| coarse.solve_nested(v), rhs, tol, GMRES_ITERATIONS)) {
+                    return x;
                 }
             }
             // Not good enough here: this mesh gets its own LU from now on.
@@ -213,27 +206,39 @@ impl Preconditioner {
         for fresh in [false, true] {
             // A preconditioner from another mesh (mesh sequencing), or one whose extra
             // iterations have outweighed a factorization, is rebuilt.
-            let stale = self.active.as_ref().is_none_or(|a| {
-                a.n != sys.op.mesh.n || self.excess as f64 > REBUILD_BALANCE * a.idx.len() as f64 / 3.0
-            });
-            if fresh || stale {
-                self.active = Some(ActiveLu::new(sys, dp, DROP));
-                self.factorizations += 1;
-                (self.first, self.excess) = (None, 0);
+            if fresh || self.stale(|a| a.n != n) {
+                self.install(ActiveLu::new(sys, dp, DROP));
             }
             let pre = self.active.as_ref().unwrap();
-            let g = gmres(apply, |v| pre.solve(v), rhs, tol, GMRES_ITERATIONS);
-            if g.converged {
-                let first = *self.first.get_or_insert(g.iterations);
-                self.excess += g.iterations.saturating_sub(first);
-                return g.x;
+            if let Some(x) = self.settle(gmres(apply, |v| pre.solve(v), rhs, tol, GMRES_ITERATIONS)) {
+                return x;
             }
         }
-        let exact = ActiveLu::new(sys, dp, 0.0);
+        self.install(ActiveLu::new(sys, dp, 0.0));
+        self.active.as_ref().unwrap().solve(rhs)
+    }
+
+    /// No LU, one that `other` rules out (another mesh), or one whose extra GMRES iterations
+    /// have outweighed a factorization (`REBUILD_BALANCE`).
+    fn stale(&self, other: impl Fn(&ActiveLu) -> bool) -> bool {
+        self.active.as_ref().is_none_or(|a| other(a) || self.excess as f64 > REBUILD_BALANCE * a.idx.len() as f64 / 3.0)
+    }
+
+    /// A fresh LU in use, its counts started.
+    fn install(&mut self, lu: ActiveLu) {
+        self.active = Some(lu);
         self.factorizations += 1;
         (self.first, self.excess) = (None, 0);
-        let d = exact.solve(rhs);
-        self.active = Some(exact);
-        d
+    }
+
+    /// A converged GMRES solve's step, its iterations counted against the current LU's
+    /// first; None if it stalled.
+    fn settle(&mut self, g: Gmres) -> Option<Vec<f64>> {
+        if !g.converged {
+            return None;
+        }
+        let first = *self.first.get_or_insert(g.iterations);
+        self.excess += g.iterations.saturating_sub(first);
+        Some(g.x)
     }
 }
