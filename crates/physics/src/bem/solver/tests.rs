@@ -3,6 +3,7 @@ use super::newton::{initial_state, newton_limited, Limits};
 use super::params::*;
 use super::precondition::*;
 use super::refinement::*;
+use super::solution::Solution;
 use super::system::*;
 use crate::numerics::gmres::gmres;
 use crate::theory::line_contact::{jkr_half_width, jkr_pull_off};
@@ -151,23 +152,35 @@ fn newton_stops_at_the_requested_tolerance() {
 }
 
 #[test]
-fn a_refinement_is_preconditioned_by_the_coarse_meshs_lu() {
-    // From a converged coarse solution, Newton on the mesh with twice the elements runs on
-    // the two-grid preconditioner: one LU (of the coarse Jacobian) in all, none of the
-    // fine one, and the same equilibrium as Newton on the fine LU.
+fn a_refinement_is_preconditioned_by_a_coarse_meshs_lu() {
+    // From a converged 1200-element solution, Newton on 2400 elements factors only
+    // 1200-element Jacobians and lands on the equilibrium of Newton on the fine mesh's own
+    // LU: `refine` with one LU, of the coarse solution's Jacobian; Newton from the
+    // interpolated state with no LU at hand, with the state restricted to 1200 elements
+    // (about half the fine mesh's active nodes).
     let params = Params::sls(3.0, 0.1, 0.1, 1e-2);
     let coarse = solve(&params, Mesh { n: 1200, half_length: 6.0 });
     assert!(coarse.converged);
     let fine = Mesh { n: 2400, ..coarse.mesh };
-    let two_grid = refine(&coarse, fine);
-    assert!(two_grid.converged && two_grid.factorizations == 1, "{} LU", two_grid.factorizations);
     let mut single = Preconditioner { single_grid: true, ..Preconditioner::default() };
     let direct = interpolated_newton(&coarse, fine, 40, &mut single);
-    assert!(direct.converged && direct.factorizations >= 1);
-    assert_eq!(single.active.as_ref().map(|a| a.n), Some(2400));
-    let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
-    assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
-    assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
+    let own = single.active.as_ref().unwrap();
+    assert!(direct.converged && direct.factorizations >= 1 && own.n == 2400);
+    let same = |s: &Solution| {
+        let (a, b) = (s.friction().mu_star, direct.friction().mu_star);
+        assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
+        assert!((s.delta - direct.delta).abs() < 1e-9, "{} vs {}", s.delta, direct.delta);
+    };
+    let two_grid = refine(&coarse, fine);
+    assert!(two_grid.converged && two_grid.factorizations == 1, "{} LU", two_grid.factorizations);
+    same(&two_grid);
+    let mut pre = Preconditioner::default();
+    let restricted = interpolated_newton(&coarse, fine, 40, &mut pre);
+    let lu = pre.active.as_ref().unwrap();
+    assert!(restricted.converged && restricted.factorizations >= 1, "{} LU", restricted.factorizations);
+    assert_eq!(lu.n, 1200);
+    assert!(lu.idx.len() * 10 < own.idx.len() * 6, "{} vs {} active nodes", lu.idx.len(), own.idx.len());
+    same(&restricted);
 }
 
 #[test]
@@ -215,31 +228,6 @@ fn the_coarsened_operator_is_the_coarse_meshs_own() {
         }
     }
     assert!(Operator::new(Mesh { n: 33, half_length: 3.0 }, 1.0, 0.1, &Default::default(), 0.0).coarsened().is_none());
-}
-
-#[test]
-fn a_mesh_without_a_carried_lu_is_preconditioned_by_its_restriction() {
-    // Newton on 2400 elements from the interpolated 1200-element solution, with no LU at
-    // hand: it factors the state restricted to 1200 elements (about half the fine mesh's
-    // active nodes), never the fine Jacobian, and lands on the equilibrium of Newton on the
-    // fine mesh's own LU.
-    let params = Params::sls(3.0, 0.1, 0.1, 1e-2);
-    let coarse = solve(&params, Mesh { n: 1200, half_length: 6.0 });
-    assert!(coarse.converged);
-    let fine = Mesh { n: 2400, ..coarse.mesh };
-    let mut pre = Preconditioner::default();
-    let two_grid = interpolated_newton(&coarse, fine, 40, &mut pre);
-    let lu = pre.active.as_ref().unwrap();
-    assert!(two_grid.converged && two_grid.factorizations >= 1, "{} LU", two_grid.factorizations);
-    assert_eq!(lu.n, 1200);
-    let mut single = Preconditioner { single_grid: true, ..Preconditioner::default() };
-    let direct = interpolated_newton(&coarse, fine, 40, &mut single);
-    let own = single.active.as_ref().unwrap();
-    assert!(direct.converged && own.n == 2400);
-    assert!(lu.idx.len() * 10 < own.idx.len() * 6, "{} vs {} active nodes", lu.idx.len(), own.idx.len());
-    let (a, b) = (two_grid.friction().mu_star, direct.friction().mu_star);
-    assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
-    assert!((two_grid.delta - direct.delta).abs() < 1e-9, "{} vs {}", two_grid.delta, direct.delta);
 }
 
 #[test]
