@@ -350,6 +350,11 @@ mod tests {
     }
 
     /// Candidate `c` against reference `ref`, points matched on `x`, value `v`.
+    /// The inputs of `one_candidate`: the reference table as "ref", the candidate as "c".
+    fn reference_and_candidate<'a>(reference: &'a Table, cand: &'a Table) -> BTreeMap<String, &'a Table> {
+        [("ref", reference), ("c", cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect()
+    }
+
     fn one_candidate(error: Option<&str>) -> ParetoParams {
         ParetoParams {
             candidates: vec!["c".into()],
@@ -368,8 +373,7 @@ mod tests {
     fn newton_iterations_are_averaged_over_a_candidates_points() {
         let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
         let cand = stage(&[1.0, 2.0], &[10.0, 20.0], &[1.0, 1.0]).with_f64("iterations", vec![3.0, 8.0]);
-        let tables: BTreeMap<String, &Table> =
-            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
+        let tables = reference_and_candidate(&reference, &cand);
         let out = Pareto::run(&one_candidate(None), &Inputs { tables }).unwrap().table;
         assert_eq!(out.f64_column("iterations_per_point").unwrap(), vec![5.5]);
     }
@@ -379,8 +383,7 @@ mod tests {
         // Actual errors 0.1 and 0.02; estimates 0.2 (covers) and 0.01 (half the error).
         let reference = stage(&[1.0, 2.0], &[10.0, 20.0], &[9.0, 9.0]);
         let cand = stage(&[1.0, 2.0], &[10.1, 19.98], &[1.0, 1.0]).with_f64("err", vec![0.2, 0.01]);
-        let tables: BTreeMap<String, &Table> =
-            [("ref", &reference), ("c", &cand)].into_iter().map(|(n, t)| (n.to_string(), t)).collect();
+        let tables = reference_and_candidate(&reference, &cand);
         let mut p = one_candidate(Some("err"));
         let out = Pareto::run(&p, &Inputs { tables: tables.clone() }).unwrap().table;
         assert_eq!(out.f64_column("estimate_covers").unwrap(), vec![0.5]);
