@@ -150,7 +150,7 @@ fn the_maximum_over_speed_converges_and_its_error_estimate_is_honest() {
     for (lambda, expected) in [(0.3, 16.525), (3.0, 99.397)] {
         let base = Params::sls(lambda, 0.1, 0.1, 1.0);
         let at = |tol: f64| {
-            max_over_speed(&base, 0.1, 100.0, 9, 0.01, |p| mesh_share(p, starting_mesh(p, tol), tol, 64_000))
+            max_over_speed(&base, 0.1, 100.0, 9, 0.01, |p, _| mesh_share(p, starting_mesh(p, tol), tol, 64_000))
         };
         let (a, b) = (at(1e-3), at(1e-4));
         assert!(a.all_converged && b.all_converged);

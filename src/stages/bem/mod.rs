@@ -101,6 +101,21 @@ impl BemParams {
         }
     }
 
+    /// `solve_at`, the refinement's first level started from `near` (a converged solve
+    /// of the same point at another speed) when there is one and the mesh is not fixed.
+    fn solve_near(&self, physics: &Params, near: Option<&Solution>) -> (Solution, f64) {
+        match (self.n, near) {
+            (None, Some(near)) => solver::solve_to_tolerance_from(
+                physics,
+                self.mesh(),
+                self.rel_tol(),
+                self.n_max.unwrap_or(solver::DEFAULT_N_MAX),
+                near,
+            ),
+            _ => self.solve_at(physics),
+        }
+    }
+
     fn validate(&self) -> Vec<FieldError> {
         let mut e = Vec::new();
         if !(self.W != 0.0 && self.W.is_finite()) {
@@ -367,7 +382,7 @@ pub struct BemMaxima;
 
 impl Kind for BemMaxima {
     const NAME: &'static str = "bem.maxima";
-    const VERSION: u32 = 17;
+    const VERSION: u32 = 18;
     const DOC: &'static str =
         "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
@@ -409,7 +424,7 @@ impl Kind for BemMaxima {
             p.V0_range[1],
             p.grid,
             p.log_tol,
-            |physics| point.solve_at(physics),
+            |physics, near| point.solve_near(physics, near),
         );
         let t = Table::new()
             .with_f64("lambda", vec![p.lambda])

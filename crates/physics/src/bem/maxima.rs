@@ -34,27 +34,35 @@ struct Solve {
 }
 
 /// Searches V0 in [v0_min, v0_max] with `grid` log-spaced points, refining to `tol` in
-/// log10 V0; `solve` gives the solution of a point and the error estimate of its mu*.
-/// Unconverged solves count as -inf (never the maximum) and are reported.
+/// log10 V0; `solve` gives the solution of a point and the error estimate of its mu*,
+/// given the converged solve so far nearest in log V0 (a start it may use; the search's
+/// order of solves is fixed, so the result is a function of the arguments). Unconverged
+/// solves count as -inf (never the maximum) and are reported.
 pub fn max_over_speed(
     base: &Params,
     v0_min: f64,
     v0_max: f64,
     grid: usize,
     tol: f64,
-    solve: impl Fn(&Params) -> (Solution, f64),
+    solve: impl Fn(&Params, Option<&Solution>) -> (Solution, f64),
 ) -> Maximum {
     let log: RefCell<Vec<Solve>> = RefCell::new(Vec::new());
+    let solved: RefCell<Vec<Solution>> = RefCell::new(Vec::new());
     let eval = |lv: f64| {
         let v0 = 10f64.powf(lv);
-        let (s, estimate) = solve(&Params { v0, ..base.clone() });
+        let (s, estimate) = {
+            let solved = solved.borrow();
+            let near =
+                solved.iter().min_by(|a, b| (a.params.v0 / v0).ln().abs().total_cmp(&(b.params.v0 / v0).ln().abs()));
+            solve(&Params { v0, ..base.clone() }, near)
+        };
         let f = s.friction();
         log.borrow_mut().push(Solve { v0, friction: f, converged: s.converged, estimate, iterations: s.iterations });
-        if s.converged && f.mu_star.is_finite() {
-            f.mu_star
-        } else {
-            f64::NEG_INFINITY
+        let value = if s.converged && f.mu_star.is_finite() { f.mu_star } else { f64::NEG_INFINITY };
+        if s.converged {
+            solved.borrow_mut().push(s);
         }
+        value
     };
     let (lv, _) = maximize_climbing(eval, v0_min.log10(), v0_max.log10(), grid, tol);
     let log = log.into_inner();
@@ -83,10 +91,33 @@ mod tests {
         // about 0.48; Persson's approximation 0.479 at V0 = 1.2).
         let base = Params::sls(0.5, 100.0, 0.1, 1.0);
         let mesh = crate::bem::solver::Mesh { n: 300, half_length: 28.0 };
-        let m = max_over_speed(&base, 0.01, 100.0, 9, 0.01, |p| crate::bem::solver::solve_with_estimate(p, mesh));
+        let m = max_over_speed(&base, 0.01, 100.0, 9, 0.01, |p, _| crate::bem::solver::solve_with_estimate(p, mesh));
         assert!(m.all_converged);
         assert!((m.friction.mu_star - 0.483).abs() < 0.003, "{m:?}");
         assert!(m.v0 > 1.0 && m.v0 < 1.7, "{m:?}");
         assert!(m.evaluations < 30, "{m:?}");
+    }
+
+    #[test]
+    fn solves_started_from_their_neighbours_find_the_same_maximum_for_less() {
+        // The bench's maximum at lambda = 1, W = 1, k = 0.1 (`pipelines/bench.yaml`,
+        // maxima_default): each solve's first level started from the nearest solve so far
+        // lands on the same mu* at every speed as the full continuation (to Newton's
+        // tolerance), hence the same maximum, in fewer than half the Newton iterations.
+        use crate::bem::solver::{solve_to_tolerance, solve_to_tolerance_from, starting_mesh, DEFAULT_REL_TOL};
+        let base = Params::sls(1.0, 1.0, 0.1, 1.0);
+        let mesh = starting_mesh(&base, DEFAULT_REL_TOL);
+        let cold =
+            max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, _| solve_to_tolerance(p, mesh, DEFAULT_REL_TOL, 16_000));
+        let warm = max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, near| match near {
+            Some(near) => solve_to_tolerance_from(p, mesh, DEFAULT_REL_TOL, 16_000, near),
+            None => solve_to_tolerance(p, mesh, DEFAULT_REL_TOL, 16_000),
+        });
+        assert!(cold.all_converged && warm.all_converged);
+        assert_eq!((cold.v0, cold.evaluations), (warm.v0, warm.evaluations));
+        let (a, b) = (cold.friction.mu_star, warm.friction.mu_star);
+        assert!((a - b).abs() < 1e-8 * a, "{a} vs {b}");
+        assert!((cold.error_estimate - warm.error_estimate).abs() < 1e-6 * cold.error_estimate);
+        assert!(2 * warm.iterations < cold.iterations, "{} vs {} iterations", warm.iterations, cold.iterations);
     }
 }

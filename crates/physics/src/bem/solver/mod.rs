@@ -41,7 +41,8 @@ pub use params::{
     Mesh, Params, DEFAULT_N_MAX, DEFAULT_REL_TOL, MIN_ZONE_ELEMENTS, TOLERANCE,
 };
 pub use refinement::{
-    refine, solve_to_tolerance, solve_to_tolerance_shares, solve_with_estimate, ErrorShares, DOMAIN_SAFETY, MESH_SAFETY,
+    refine, solve_to_tolerance, solve_to_tolerance_from, solve_to_tolerance_shares, solve_with_estimate, ErrorShares,
+    DOMAIN_SAFETY, MESH_SAFETY,
 };
 pub use solution::{Friction, Solution, Termination};
 pub use system::Control;

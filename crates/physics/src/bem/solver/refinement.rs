@@ -31,7 +31,7 @@ pub const DOMAIN_SAFETY: f64 = 2.0;
 /// quarter of it is far from the asymptotic regime; the three-level estimate of
 /// `solve_to_tolerance` is then needlessly large.)
 pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
-    let (s, shares) = refine_to(params, mesh, f64::INFINITY, mesh.n, false);
+    let (s, shares) = refine_to(params, mesh, f64::INFINITY, mesh.n, false, None);
     (s, shares.reported())
 }
 
@@ -160,13 +160,43 @@ pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usiz
 
 /// `solve_to_tolerance` with the error's two shares apart.
 pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, ErrorShares) {
-    refine_to(params, mesh, rel_tol, n_max, true)
+    refine_to(params, mesh, rel_tol, n_max, true, None)
+}
+
+/// `solve_to_tolerance`, its first level started by Newton from `neighbour`, a converged
+/// solution of the same lambda, W, k and domain at another speed (interpolated onto the
+/// mesh), instead of the continuation from the relaxed state; the continuation if that
+/// fails. What a search over V0 uses, from its nearest solve so far.
+pub fn solve_to_tolerance_from(
+    params: &Params,
+    mesh: Mesh,
+    rel_tol: f64,
+    n_max: usize,
+    neighbour: &Solution,
+) -> (Solution, f64) {
+    let (s, shares) = refine_to(params, mesh, rel_tol, n_max, true, Some(neighbour));
+    (s, shares.reported())
 }
 
 /// The refinement of `solve_to_tolerance`; `three_levels`: the mesh's share from three
-/// levels (`observed_estimate`), else the two-level `richardson`.
-fn refine_to(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize, three_levels: bool) -> (Solution, ErrorShares) {
-    let mut coarse = solve(params, Mesh { n: (mesh.n / 2).max(8), ..mesh });
+/// levels (`observed_estimate`), else the two-level `richardson`; `neighbour`: the first
+/// level from it (`solve_to_tolerance_from`).
+fn refine_to(
+    params: &Params,
+    mesh: Mesh,
+    rel_tol: f64,
+    n_max: usize,
+    three_levels: bool,
+    neighbour: Option<&Solution>,
+) -> (Solution, ErrorShares) {
+    let first = Mesh { n: (mesh.n / 2).max(8), ..mesh };
+    let mut coarse = match neighbour.filter(|s| s.converged) {
+        Some(s) => {
+            let start = Solution { params: params.clone(), ..s.clone() };
+            or_continuation(interpolated_newton(&start, first, 40, &mut Preconditioner::default()), first)
+        }
+        None => solve(params, first),
+    };
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
     let mut carried = None;
     let mut next = |from: &Solution, n: usize| {
