@@ -245,7 +245,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 14;
+    const VERSION: u32 = 15;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
@@ -260,6 +260,7 @@ impl Kind for FemBucklingLimit {
         "buckles_at_h_lo",
         "buckles_at_h_hi",
         "probes",
+        "lu_factorizations",
         "wall_time_s",
     ];
     type Params = LimitParams;
@@ -277,9 +278,12 @@ impl Kind for FemBucklingLimit {
         let t0 = std::time::Instant::now();
         let m = &p.model;
         let opt = m.options(false);
+        let lus = std::cell::Cell::new(0);
         let buckles = |h: f64| {
             let model = m.shell(h);
-            probe(&model, &m.plate(&model, h, p.gamma_over_Eh, p.mu), m.E, h, opt).buckles()
+            let answer = probe(&model, &m.plate(&model, h, p.gamma_over_Eh, p.mu), m.E, h, opt).buckles();
+            lus.set(lus.get() + model.factorizations());
+            answer
         };
         let (mut lo, mut hi) = (p.h_lo, p.h_hi);
         let mut probes = 2;
@@ -309,6 +313,7 @@ impl Kind for FemBucklingLimit {
             .with("buckles_at_h_lo", ColumnData::Bool(vec![at_lo]))
             .with("buckles_at_h_hi", ColumnData::Bool(vec![at_hi]))
             .with("probes", ColumnData::I64(vec![probes]))
+            .with("lu_factorizations", ColumnData::I64(vec![lus.get() as i64]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()])
             .into())
     }

@@ -139,18 +139,30 @@ impl IndentParams {
             (model, (c, friction))
         };
         let ((model, (cycle, friction)), finer) = if self.mesh_study {
-            let (this, (_, (finer, _))) = rayon::join(|| on(n), || on(2 * n));
-            (this, Some(finer))
+            let (this, (finer_model, (finer, _))) = rayon::join(|| on(n), || on(2 * n));
+            (this, Some((finer, finer_model.factorizations())))
         } else {
             (on(n), None)
         };
+        let lu_factorizations = model.factorizations() + finer.as_ref().map_or(0, |(_, lus)| *lus);
+        let finer = finer.map(|(c, _)| c);
         let source = match (&finer, self.shell.default_mesh()) {
             (Some(_), _) => "study",
             (None, true) => "declared",
             (None, false) => "none",
         };
         let step = delta_max * self.shell.R / self.steps as f64;
-        (model, Cycles { cycle, finer, default_mesh: self.shell.default_mesh(), mu: self.mu, source, step, friction })
+        let cycles = Cycles {
+            cycle,
+            finer,
+            default_mesh: self.shell.default_mesh(),
+            mu: self.mu,
+            source,
+            step,
+            friction,
+            lu_factorizations,
+        };
+        (model, cycles)
     }
 }
 
@@ -192,6 +204,8 @@ pub(super) struct Cycles {
     step: f64,
     /// The work done against friction on a complete cycle (`Cycle::friction_work`), else 0.
     friction: f64,
+    /// LU factorisations of the tangent over the cycles (the mesh study's included).
+    pub(super) lu_factorizations: usize,
 }
 
 impl Cycles {
@@ -260,7 +274,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 26;
+    const VERSION: u32 = 27;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -302,6 +316,7 @@ impl Kind for FemIndent {
         "mesh_error_source",
         "mesh_study_agrees",
         "complete",
+        "lu_factorizations",
         "wall_time_s",
     ];
     type Params = IndentParams;
@@ -400,6 +415,7 @@ impl Kind for FemIndent {
             .with("mesh_error_source", ColumnData::Str(vec![cycles.source.to_string(); n]))
             .with("mesh_study_agrees", ColumnData::Bool(vec![events.agrees; n]))
             .with("complete", ColumnData::Bool(vec![c.complete; n]))
+            .with("lu_factorizations", ColumnData::I64(vec![cycles.lu_factorizations as i64; n]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }

@@ -39,7 +39,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 17;
+    const VERSION: u32 = 18;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     const COLUMNS: &'static [&'static str] = &[
@@ -55,6 +55,7 @@ impl Kind for FemProfile {
         "F_bar",
         "F_contact_bar",
         "F_error_bar",
+        "lu_factorizations",
         "wall_time_s",
     ];
     type Params = ProfileParams;
@@ -131,6 +132,7 @@ impl Kind for FemProfile {
             // The compressive contact force alone (F_bar less the adhesive pull).
             .with_f64("F_contact_bar", t.contact_force)
             .with_f64("F_error_bar", t.force_error)
+            .with("lu_factorizations", ColumnData::I64(vec![cycles.lu_factorizations as i64; rows]))
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); rows])
             .into())
     }
