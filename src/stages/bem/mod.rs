@@ -104,15 +104,10 @@ impl BemParams {
     /// `solve_at`, the refinement's first level started from `near` (a converged solve
     /// of the same point at another speed) when there is one and the mesh is not fixed.
     fn solve_near(&self, physics: &Params, near: Option<&Solution>) -> (Solution, f64) {
-        match (self.n, near) {
-            (None, Some(near)) => solver::solve_to_tolerance_from(
-                physics,
-                self.mesh(),
-                self.rel_tol(),
-                self.n_max.unwrap_or(solver::DEFAULT_N_MAX),
-                near,
-            ),
-            _ => self.solve_at(physics),
+        let n_max = self.n_max.unwrap_or(solver::DEFAULT_N_MAX);
+        match self.n {
+            Some(_) => self.solve_at(physics),
+            None => solver::solve_to_tolerance_from(physics, self.mesh(), self.rel_tol(), n_max, near),
         }
     }
 

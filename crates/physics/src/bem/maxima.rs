@@ -109,9 +109,8 @@ mod tests {
         let mesh = starting_mesh(&base, DEFAULT_REL_TOL);
         let cold =
             max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, _| solve_to_tolerance(p, mesh, DEFAULT_REL_TOL, 16_000));
-        let warm = max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, near| match near {
-            Some(near) => solve_to_tolerance_from(p, mesh, DEFAULT_REL_TOL, 16_000, near),
-            None => solve_to_tolerance(p, mesh, DEFAULT_REL_TOL, 16_000),
+        let warm = max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, near| {
+            solve_to_tolerance_from(p, mesh, DEFAULT_REL_TOL, 16_000, near)
         });
         assert!(cold.all_converged && warm.all_converged);
         assert_eq!((cold.v0, cold.evaluations), (warm.v0, warm.evaluations));

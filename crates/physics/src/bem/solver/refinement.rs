@@ -163,18 +163,18 @@ pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_ma
     refine_to(params, mesh, rel_tol, n_max, true, None)
 }
 
-/// `solve_to_tolerance`, its first level started by Newton from `neighbour`, a converged
-/// solution of the same lambda, W, k and domain at another speed (interpolated onto the
-/// mesh), instead of the continuation from the relaxed state; the continuation if that
-/// fails. What a search over V0 uses, from its nearest solve so far.
+/// `solve_to_tolerance`, its first level started by Newton from `neighbour` (if any), a
+/// converged solution of the same lambda, W, k and domain at another speed (interpolated
+/// onto the mesh), instead of the continuation from the relaxed state; the continuation if
+/// that fails. What a search over V0 uses, from its nearest solve so far.
 pub fn solve_to_tolerance_from(
     params: &Params,
     mesh: Mesh,
     rel_tol: f64,
     n_max: usize,
-    neighbour: &Solution,
+    neighbour: Option<&Solution>,
 ) -> (Solution, f64) {
-    let (s, shares) = refine_to(params, mesh, rel_tol, n_max, true, Some(neighbour));
+    let (s, shares) = refine_to(params, mesh, rel_tol, n_max, true, neighbour);
     (s, shares.reported())
 }
 
