@@ -3,6 +3,7 @@
 mod cli;
 mod describe;
 mod exit;
+mod heap;
 
 use anyhow::Context;
 use clap::Parser;
@@ -35,6 +36,7 @@ fn load_with(
 }
 
 fn main() -> ExitCode {
+    heap::keep_freed_blocks();
     // Tasks run in parallel (rayon); a sparse factorisation inside one task gains nothing
     // from threads of its own on 2 cores, only contention.
     faer::set_global_parallelism(faer::Par::Seq);
