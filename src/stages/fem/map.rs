@@ -145,6 +145,17 @@ impl Default for MapModel {
     }
 }
 
+/// A snap is located to delta_max / `FOLD_STEPS` at least, whatever the base step: the
+/// default 35 steps halved 8 times. Probes that need only the snap (`fem.gamma_c`) take
+/// fewer, longer steps on the way to it (docs/shell.md, "Cost").
+const FOLD_STEPS: f64 = 35.0 * 256.0;
+
+/// Halvings of a load step: 8, or more where `steps` base steps need them to reach
+/// delta_max / `FOLD_STEPS`.
+fn max_cuts(steps: usize) -> u32 {
+    ((FOLD_STEPS / steps as f64).log2().ceil() as u32).max(8)
+}
+
 impl MapModel {
     pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
         self.imperfection.validate(e, "model.");
@@ -185,7 +196,7 @@ impl MapModel {
         CycleOptions {
             delta_max: self.delta_max * self.R,
             steps: self.steps,
-            max_cuts: 8,
+            max_cuts: max_cuts(self.steps),
             bisections: self.bisections,
             criterion: self.stability.criterion(self.lift_threshold),
             hold: self.hold.into(),
@@ -199,5 +210,26 @@ impl MapModel {
     /// F R / (E h^3) per unit force.
     pub(super) fn f_bar(&self, h_over_r: f64) -> f64 {
         self.R / (self.E * self.h(h_over_r).powi(3))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_snap_is_located_to_the_same_resolution_whatever_the_base_step() {
+        // The default 35 steps and longer ones keep 8 halvings; fewer, longer steps get as
+        // many more as reach delta_max / 8960 (10 steps: 10 halvings, delta_max / 10240).
+        assert_eq!(max_cuts(35), 8);
+        assert_eq!(max_cuts(70), 8);
+        assert_eq!(max_cuts(20), 9);
+        assert_eq!(max_cuts(10), 10);
+        for steps in [1, 3, 7, 10, 20, 34, 35, 36, 100] {
+            let smallest = 1.0 / (steps as f64 * 2f64.powi(max_cuts(steps) as i32));
+            assert!(smallest <= 1.0 / FOLD_STEPS, "{steps} steps: {smallest}");
+            // and no finer than needed (beyond the 8 halvings kept for long steps)
+            assert!(max_cuts(steps) == 8 || 2.0 * smallest > 1.0 / FOLD_STEPS, "{steps} steps");
+        }
     }
 }
