@@ -145,15 +145,17 @@ impl Default for MapModel {
     }
 }
 
-/// A snap is located to delta_max / `FOLD_STEPS` at least, whatever the base step: the
-/// default 35 steps halved 8 times. Probes that need only the snap (`fem.gamma_c`) take
-/// fewer, longer steps on the way to it (docs/shell.md, "Cost").
-const FOLD_STEPS: f64 = 35.0 * 256.0;
+/// A snap is located to delta/R = 1 / `FOLD_RESOLUTION` at least, whatever the base step:
+/// the default base step delta/R = 0.35 / 35 halved 8 times. Probes that need only the snap
+/// (`fem.gamma_c`, `fem.buckling_limit`, the imperfection sweeps) take fewer, longer steps
+/// on the way to it (docs/shell.md, "Cost").
+const FOLD_RESOLUTION: f64 = 25_600.0;
 
-/// Halvings of a load step: 8, or more where `steps` base steps need them to reach
-/// delta_max / `FOLD_STEPS`.
-fn max_cuts(steps: usize) -> u32 {
-    ((FOLD_STEPS / steps as f64).log2().ceil() as u32).max(8)
+/// Halvings of a base step of `base_over_r` (delta/R): 8, or more where the step needs them
+/// to reach delta/R = 1 / `FOLD_RESOLUTION`.
+fn max_cuts(base_over_r: f64) -> u32 {
+    // (the tolerance keeps a base step of exactly 256 resolutions at 8)
+    ((base_over_r * FOLD_RESOLUTION).log2() - 1e-9).ceil().max(8.0) as u32
 }
 
 impl MapModel {
@@ -196,7 +198,7 @@ impl MapModel {
         CycleOptions {
             delta_max: self.delta_max * self.R,
             steps: self.steps,
-            max_cuts: max_cuts(self.steps),
+            max_cuts: max_cuts(self.delta_max / self.steps as f64),
             bisections: self.bisections,
             criterion: self.stability.criterion(self.lift_threshold),
             hold: self.hold.into(),
@@ -219,17 +221,22 @@ mod tests {
 
     #[test]
     fn a_snap_is_located_to_the_same_resolution_whatever_the_base_step() {
-        // The default 35 steps and longer ones keep 8 halvings; fewer, longer steps get as
-        // many more as reach delta_max / 8960 (10 steps: 10 halvings, delta_max / 10240).
-        assert_eq!(max_cuts(35), 8);
-        assert_eq!(max_cuts(70), 8);
-        assert_eq!(max_cuts(20), 9);
-        assert_eq!(max_cuts(10), 10);
-        for steps in [1, 3, 7, 10, 20, 34, 35, 36, 100] {
-            let smallest = 1.0 / (steps as f64 * 2f64.powi(max_cuts(steps) as i32));
-            assert!(smallest <= 1.0 / FOLD_STEPS, "{steps} steps: {smallest}");
-            // and no finer than needed (beyond the 8 halvings kept for long steps)
-            assert!(max_cuts(steps) == 8 || 2.0 * smallest > 1.0 / FOLD_STEPS, "{steps} steps");
+        // The default 35 steps to delta/R = 0.35, and steps of that length or shorter, keep 8
+        // halvings; longer steps get as many more as reach delta/R = 1/25600 (10 steps to
+        // 0.35: 10 halvings, 1/29257).
+        assert_eq!(max_cuts(0.35 / 35.0), 8);
+        assert_eq!(max_cuts(0.7 / 70.0), 8);
+        assert_eq!(max_cuts(0.65 / 65.0), 8);
+        assert_eq!(max_cuts(0.35 / 70.0), 8);
+        assert_eq!(max_cuts(0.35 / 20.0), 9);
+        assert_eq!(max_cuts(0.35 / 10.0), 10);
+        assert_eq!(max_cuts(0.7 / 20.0), 10);
+        for (delta_max, steps) in [(0.35, 1), (0.35, 3), (0.35, 7), (0.35, 10), (0.7, 20), (0.35, 34), (0.5, 36)] {
+            let base = delta_max / steps as f64;
+            let smallest = base / 2f64.powi(max_cuts(base) as i32);
+            assert!(smallest <= 1.0 / FOLD_RESOLUTION, "{steps} steps: {smallest}");
+            // and no finer than needed
+            assert!(2.0 * smallest > 1.0 / FOLD_RESOLUTION, "{steps} steps");
         }
     }
 }
