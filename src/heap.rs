@@ -1,10 +1,10 @@
 //! How the process keeps freed memory: the shell's Newton iterations allocate and free
 //! tangents and band factors of 1-2 MB many thousands of times per point. With glibc's
 //! defaults each such block is returned to the kernel when freed (mmap'd, or trimmed off
-//! the heap's top) and faulted in again, zeroed, when allocated next: 500,000 page faults
-//! and about 7 % of a frictional `fem.gamma_c` point (docs/tuning.md, "Memory"). Blocks
-//! up to 32 MiB are served from the heap instead, and the heap is trimmed only past
-//! 512 MiB free. The results do not change, only where their memory comes from.
+//! the heap's top) and faulted in again, zeroed, when allocated next (the page faults and
+//! their cost measured in docs/tuning.md, "Memory"). Blocks up to 32 MiB are served from
+//! the heap instead, and the heap is trimmed only past 512 MiB free. The results do not
+//! change, only where their memory comes from.
 
 /// Sets the allocator's thresholds (glibc on Linux; elsewhere nothing to do).
 pub fn keep_freed_blocks() {
