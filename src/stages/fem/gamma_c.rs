@@ -1,5 +1,6 @@
 //! Stage kinds of the buckling-suppression map of Chapter 3 (Section 3.4, Fig. 3.9):
-//! `fem.gamma_c` (the critical adhesion at (h/R, mu) by bracketing, one task per point so
+//! `fem.gamma_c` (the critical adhesion at (h/R, mu) by a safeguarded secant on where the
+//! snap lies, `fem::critical::bracket`, one task per point so
 //! that every point is cached on its own) and `fem.gamma_c_map` (the map: gamma_c(h/R) per
 //! mu closed at the thickness of `fem.buckling_limit`, with Eq. 3.7).
 
@@ -37,8 +38,10 @@ pub struct GammaCParams {
     #[serde(default)]
     #[schemars(range(min = 0))]
     pub mu: f64,
-    /// First gamma/(E h) tried (default 2e-2), factor between trials until the answer
-    /// changes (default 2), largest gamma/(E h) tried (default 0.1).
+    /// The first gamma/(E h) tried per unit of the adhesionless snap's distance from
+    /// delta_max: the first trial is guess (1 - delta_snap(0) / delta_max) (default 2e-2;
+    /// `fem::critical::bracket`), the factor of the steps taken without a secant estimate
+    /// (default 2), the largest gamma/(E h) tried (default 0.1).
     #[serde(default = "default_guess")]
     #[schemars(extend("exclusiveMinimum" = 0))]
     pub guess: f64,
@@ -61,7 +64,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 19;
+    const VERSION: u32 = 20;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
