@@ -260,14 +260,17 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             Some(f) if past_fold && f > cur.delta => grown.min(f),
             _ => grown,
         };
-        let capped = target < grown;
+        // A step shortened to delta_max counts as capped too: halving it would try the
+        // same failed displacement again from the same state.
+        let capped = target < cur.delta + dd;
         // A capped step no longer than the smallest counts as one.
         let at_smallest = cuts >= opt.max_cuts || (capped && target - cur.delta <= smallest * (1.0 + 1e-9));
         // The next, shorter step: half of this one; for a capped step, the largest
         // base / 2^cuts at most half of it (dd stays base / 2^cuts).
         let cut = |cuts: &mut u32, dd: &mut f64| {
             if capped {
-                *cuts = ((2.0 * base / (target - cur.delta)).log2().ceil().max(1.0) as u32).min(opt.max_cuts);
+                // (Rounding aside: a step of exactly base / 2^k is halved, not quartered.)
+                *cuts = (((2.0 * base / (target - cur.delta)).log2() - 1e-9).ceil().max(1.0) as u32).min(opt.max_cuts);
                 *dd = base / 2f64.powi(*cuts as i32);
             } else {
                 *cuts += 1;
