@@ -37,7 +37,7 @@
 use super::adhesion::Tangent;
 use super::contact::Plate;
 use super::indent::{apex_z, Step};
-use super::system::{Model, TangentSink};
+use super::system::{Model, Stiffness, TangentSink};
 
 /// Default pressure threshold (fraction of the peak pressure) above which a contact node
 /// is held against lifting in the stability test.
@@ -87,7 +87,26 @@ pub enum AdhesiveHold {
 /// the plate adheres). The held nodes also keep their frictional stick stiffness; slipping
 /// ones contribute none (the symmetric part of the slip tangent is dropped).
 pub fn unilaterally_stable(model: &Model, plate: &Plate, s: &Step, threshold: f64, hold: AdhesiveHold) -> bool {
-    let Some((_, mut k)) = model.assemble(&s.u) else { return false };
+    stability_tangent(model, plate, s, threshold, hold).is_some_and(|k| model.is_stable(&k))
+}
+
+/// The smallest eigenvalue of the tangent of `unilaterally_stable` (`iterations` steps of
+/// inverse iteration), None if it is not positive definite: how far the state is from
+/// losing stability.
+pub fn stability_margin(
+    model: &Model,
+    plate: &Plate,
+    s: &Step,
+    threshold: f64,
+    hold: AdhesiveHold,
+    iterations: usize,
+) -> Option<f64> {
+    model.smallest_eigenvalue(&stability_tangent(model, plate, s, threshold, hold)?, iterations)
+}
+
+/// The tangent whose positive definiteness `unilaterally_stable` tests.
+fn stability_tangent(model: &Model, plate: &Plate, s: &Step, threshold: f64, hold: AdhesiveHold) -> Option<Stiffness> {
+    let (_, mut k) = model.assemble(&s.u)?;
     let state = &s.contact;
     let peak = state.pressure.iter().copied().fold(0.0, f64::max);
     for (i, &a) in model.mesh.outer.iter().enumerate() {
@@ -107,7 +126,7 @@ pub fn unilaterally_stable(model: &Model, plate: &Plate, s: &Step, threshold: f6
         let n = model.n_dofs();
         ad.apply(&model.mesh, &s.u, apex_z(model) - s.delta, &mut vec![0.0; n], &mut k, &mut vec![0.0; n], tangent);
     }
-    model.is_stable(&k)
+    Some(k)
 }
 
 #[cfg(test)]

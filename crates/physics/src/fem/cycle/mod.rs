@@ -22,8 +22,12 @@ use jump::{confirm_failure, invert, is_inverted, jump_in, land, land_with, walk,
 use super::arclength::{continue_path, ArcOptions};
 use super::contact::Plate;
 use super::indent::{solve_at, solve_from, solve_from_extending, Options, Step, StepEnd};
-use super::stability::{unilaterally_stable, AdhesiveHold, Criterion};
+use super::stability::{stability_margin, unilaterally_stable, AdhesiveHold, Criterion};
 use super::system::Model;
+
+/// Inverse iterations for a stability margin (`stability::stability_margin`): measured
+/// near the fold of h/R = 0.06, mu = 0.5, 15 agree with 40 to 1e-10.
+const MARGIN_ITERATIONS: usize = 15;
 
 /// Settings of the cycle (lengths in the mesh's units).
 #[derive(Clone, Copy, Debug)]
@@ -217,6 +221,33 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     // passed the limit point of the flattened branch (no equilibrium lies beyond it), and a
     // state that Newton finds already inverted lies past it too.
     let limit_point = opt.criterion == Criterion::Tangent;
+    // Whether the fold of the flattened branch lies before `target`, as the stability
+    // margins (smallest eigenvalues of the stability test's tangent) of the last two states
+    // of `loading` predict: near a limit point the margin's square falls linearly to zero.
+    // Margins are computed once per state (`margins`, by delta).
+    let fold_predicted = |margins: &mut Vec<(f64, Option<f64>)>, loading: &[CyclePoint], target: f64| -> bool {
+        let [.., p, c] = loading else { return false };
+        // (The reference state carries no contact state: no margin there.)
+        let on_branch =
+            |q: &CyclePoint| q.step.converged && q.step.stable && !q.inverted && !q.step.contact.active.is_empty();
+        if plate.friction.is_none() || !on_branch(p) || !on_branch(c) || c.step.delta <= p.step.delta {
+            return false;
+        }
+        let mut margin = |s: &Step| -> Option<f64> {
+            if let Some(&(_, m)) = margins.iter().find(|(d, _)| *d == s.delta) {
+                return m;
+            }
+            let m = stability_margin(model, plate, s, opt.criterion.threshold(), opt.hold, MARGIN_ITERATIONS);
+            margins.push((s.delta, m));
+            m
+        };
+        let (Some(lp), Some(lc)) = (margin(&p.step), margin(&c.step)) else { return false };
+        if lc >= lp {
+            return false;
+        }
+        let fold = c.step.delta + lc * lc * (c.step.delta - p.step.delta) / (lp * lp - lc * lc);
+        fold < target
+    };
     let mut cycle = Cycle { complete: true, ..Default::default() };
     let zero = Step {
         delta: 0.0,
@@ -253,6 +284,10 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
     // succeed from a nearer one), but not overshot, which near a fold fails as surely;
     // without friction the bracket is bisected (below; docs/shell.md, "Cost").
     let mut failed_at: Option<f64> = None;
+    // With friction: the failure ahead lies past the fold that the stability margins of
+    // the last two states predict (`fold_predicted`), and is bisected as without friction.
+    let mut fold_ahead = false;
+    let mut margins: Vec<(f64, Option<f64>)> = Vec::new();
     while cur.delta < opt.delta_max * (1.0 - 1e-12) {
         let past_fold = limit_point && !inverted && cycle.buckling.is_none();
         let grown = (cur.delta + dd).min(opt.delta_max);
@@ -287,6 +322,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
                 cut(&mut cuts, &mut dd);
                 if past_fold {
                     failed_at = Some(failed_at.map_or(target, |f| f.min(target)));
+                    fold_ahead = fold_ahead || fold_predicted(&mut margins, &loading, target);
                 }
                 continue;
             }
@@ -315,6 +351,7 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
             // of the bisection itself landed off the branch, at 34.1 F_c instead of 36.36).
             cut(&mut cuts, &mut dd);
             failed_at = Some(failed_at.map_or(target, |f| f.min(target)));
+            fold_ahead = fold_ahead || fold_predicted(&mut margins, &loading, target);
             continue;
         }
         if !inverted && leaves(&s) {
@@ -403,13 +440,21 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         cur = s;
         if failed_at.is_some_and(|f| cur.delta >= f) {
             failed_at = None;
+            fold_ahead = false;
+        }
+        // The prediction again with the new state: a fold predicted too early (the margins
+        // of states far from it fall, but not as the square root) is withdrawn, and the
+        // failure is tried again as any frictional failure.
+        if let (true, Some(f)) = (fold_ahead, failed_at) {
+            fold_ahead = fold_predicted(&mut margins, &loading, f + (f - cur.delta));
         }
         // Between a success and the failure still ahead, a frictionless loading bisects: the
         // next step is half this one, not the failure again. Its equilibria do not depend on
         // the path, and the last step, of the smallest size, tries the failure from the
         // nearest state anyway (on the stages of `pipelines/thesis.yaml` the fold's delta and
         // force are the retrying rule's to 1e-9; docs/shell.md, "Cost").
-        let bisecting = plate.friction.is_none() && past_fold && failed_at.is_some_and(|f| f > cur.delta);
+        let bisecting =
+            (plate.friction.is_none() || fold_ahead) && past_fold && failed_at.is_some_and(|f| f > cur.delta);
         if bisecting {
             if cuts < opt.max_cuts {
                 cuts += 1;

@@ -105,3 +105,34 @@ fn the_forces_alone_are_the_assemblys_bitwise_and_none_when_inverted() {
     }
     assert!(model.assemble(&u).is_none() && model.internal_forces(&u).is_none());
 }
+
+#[test]
+fn the_smallest_eigenvalue_is_where_a_shift_loses_definiteness() {
+    // Sylvester: K - s I is positive definite for every s below the smallest eigenvalue
+    // of K and for none above, so the inverse iteration's value must sit between two
+    // shifts 0.1 % apart (the tangent of the unloaded shell and of a pressed state).
+    let (e, r) = (1.3, 15.0);
+    let model = Model::new(ShellMesh::hemisphere(r, 1.0, 40, 2, 3.0), e, 0.45, Base::Clamped);
+    let shifted = |k: &Stiffness, s: f64| {
+        let mut k = k.clone();
+        for i in (0..model.n_dofs()).filter(|&i| !model.fixed[i]) {
+            k.push((i, i, -s));
+        }
+        k
+    };
+    let mut u = vec![0.0; model.n_dofs()];
+    for (i, v) in u.iter_mut().enumerate() {
+        *v = if model.fixed[i] { 0.0 } else { 1e-3 * ((i as f64) * 0.37).sin() };
+    }
+    for state in [vec![0.0; model.n_dofs()], u] {
+        let (_, k) = model.assemble(&state).unwrap();
+        let lambda = model.smallest_eigenvalue(&k, 300).unwrap();
+        assert!(lambda > 0.0);
+        assert!(model.is_stable(&shifted(&k, 0.999 * lambda)), "{lambda}");
+        assert!(!model.is_stable(&shifted(&k, 1.001 * lambda)), "{lambda}");
+    }
+    // Not positive definite: no margin.
+    let (_, k) = model.assemble(&vec![0.0; model.n_dofs()]).unwrap();
+    let lambda = model.smallest_eigenvalue(&k, 300).unwrap();
+    assert!(model.smallest_eigenvalue(&shifted(&k, 1.01 * lambda), 15).is_none());
+}
