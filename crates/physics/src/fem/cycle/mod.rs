@@ -452,7 +452,8 @@ pub fn load_unload(model: &Model, plate: &Plate, e: f64, opt: CycleOptions) -> C
         // next step is half this one, not the failure again. Its equilibria do not depend on
         // the path, and the last step, of the smallest size, tries the failure from the
         // nearest state anyway (on the stages of `pipelines/thesis.yaml` the fold's delta and
-        // force are the retrying rule's to 1e-9; docs/shell.md, "Cost").
+        // force are the retrying rule's to 1e-9; docs/shell.md, "Cost"). A frictional one
+        // bisects too while the margins predict the fold before the failure.
         let bisecting =
             (plate.friction.is_none() || fold_ahead) && past_fold && failed_at.is_some_and(|f| f > cur.delta);
         if bisecting {
