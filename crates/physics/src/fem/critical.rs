@@ -20,8 +20,8 @@
 //! snaps; then each probe goes a little above the estimate, or, where the estimate lies
 //! within (1 + rel_tol) of the lowest probe that did not snap, just inside that probe's
 //! reach, so that the one probe that must snap near the threshold usually closes the
-//! bracket. A bracket narrower than (1 + rel_tol)^2 is closed by one probe, at the estimate
-//! if it lies within both ends' reach. Without an estimate, or after three probes in a row
+//! bracket. A bracket narrower than (1 + rel_tol)^1.96 is closed by one probe, at the
+//! estimate if it lies within both ends' reach. Without an estimate, or after three probes in a row
 //! that did not snap, it bisects geometrically. The verdicts alone decide the bracket: the
 //! signal makes the search cheaper, never its answer wrong.
 //!
@@ -173,7 +173,8 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
     }
     let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
     let q = 1.0 + rel_tol;
-    let mut x = (guess * zero.signal().map_or(1.0, |s| (-s).clamp(1e-3, 1.0))).min(x_max);
+    let first = (guess * zero.signal().map_or(1.0, |s| (-s).clamp(1e-3, 1.0))).min(x_max);
+    let mut x = first;
     // Trials divided while only x = 0 has snapped, and probes in a row that did not snap.
     let (mut descents, mut misses) = (0, 0);
     loop {
@@ -190,7 +191,8 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
         if lo > 0.0 && hi / lo <= q {
             break;
         }
-        if lo == 0.0 && hi < guess / growth.powi(12) {
+        // Nothing snaps six decades below the first trial: the threshold is 0 to that.
+        if lo == 0.0 && hi < 1e-6 * first {
             break;
         }
         let estimate = if lo > 0.0 { secant_estimate(&m.done) } else { None };
@@ -201,13 +203,14 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
         } else if hi.is_infinite() {
             // No further than `growth` beyond the last snap: an estimate extrapolated from
             // two probes far below the threshold is a poor one.
-            estimate.map_or(lo * growth, |e| (e * q.powf(ABOVE)).clamp(lo * q.powf(0.98), lo * growth)).min(x_max)
-        } else if hi / lo <= q * q {
+            let top = lo * growth.max(q);
+            estimate.map_or(lo * growth, |e| (e * q.powf(ABOVE)).clamp(lo * q.powf(0.98), top)).min(x_max)
+        } else if hi / lo <= q.powf(1.96) {
             // One probe closes the bracket whichever way it answers.
             estimate.unwrap_or(bisection).clamp(hi / q.powf(0.98), lo * q.powf(0.98))
         } else {
             match estimate {
-                // The secant has overshot twice: its model is off here.
+                // Three probes in a row that did not snap: the secant overshoots here.
                 _ if misses > 2 => bisection,
                 // The threshold just below hi: a probe that closes the bracket if it snaps.
                 Some(e) if e >= hi / q => hi / q.powf(0.98),
@@ -341,6 +344,21 @@ mod tests {
                         "{xc} {s0} {p} {guess}: {} probes, {snapping} snapping",
                         b.probes.len()
                     );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn any_growth_and_tolerance_bracket_without_panicking() {
+        // Every clamp of the search has its bounds in order: growth below and above
+        // 1 + rel_tol, tolerances from 1e-3 to 3, thresholds and guesses over decades.
+        for growth in [1.01, 1.05, 1.5, 2.0, 10.0] {
+            for rel_tol in [1e-3, 0.05, 0.1, 0.5, 3.0] {
+                for (xc, guess) in [(2.5e-5, 4e-5), (2.5e-5, 4e-7), (2e-6, 4e-3), (1e-3, 4e-5)] {
+                    let b = bracket(synthetic(xc, -0.5, 1.7), guess, growth, 0.1, rel_tol);
+                    assert!(b.found && b.lo < xc && b.hi >= xc, "{growth} {rel_tol} {xc} {guess}: {b:?}");
+                    assert!(b.hi / b.lo <= 1.0 + rel_tol + 1e-12, "{growth} {rel_tol} {xc} {guess}: {b:?}");
                 }
             }
         }
