@@ -20,7 +20,8 @@ fn cluster() -> bool {
 
 const SLURM: &[&str] = &["--executor", "slurm"];
 
-/// Physics (a BEM sweep), a reader of it, an orchestrator test kind and a figure.
+/// Physics (a BEM sweep), a reader of it, an orchestrator test kind (read whole and row by
+/// row) and a figure.
 const PIPELINE: &str = r#"stages:
   - name: sliding
     kind: bem.sweep
@@ -32,6 +33,10 @@ const PIPELINE: &str = r#"stages:
     kind: util.sleep
     needs: [sweep, sliding]
     params: {x: 7}
+  - name: per_x
+    kind: util.sleep
+    needs: [{stage: sweep, match: [x]}]
+    params: {x: [1, 2]}
   - name: fig
     kind: figure
     needs: [sliding]
@@ -64,23 +69,25 @@ fn a_slurm_run_gives_the_tables_and_figures_of_a_local_run() {
     s.write("p.yaml", PIPELINE);
     let (code, err, r) = s.run("p.yaml", SLURM);
     assert_eq!(code, 0, "{err}");
-    assert_eq!(r.count(None, "computed"), 8, "{err}");
+    assert_eq!(r.count(None, "computed"), 10, "{err}");
     for t in r.tasks() {
         assert!(t["ran_on"].as_str().is_some_and(|o| o.starts_with("SLURM job ")), "{t}");
     }
-    for stage in ["sliding", "sweep", "after"] {
+    for stage in ["sliding", "sweep", "after", "per_x"] {
         assert_eq!(table_values(&s, stage), table_values(&local, stage), "table {stage}");
     }
     assert!(column(&s.table("sliding"), "mu_star").iter().all(|m| m.is_finite() && *m > 0.0));
     assert_eq!(snapshot(&s.path("figures")), snapshot(&local.path("figures")), "figures identical");
-    // One array per wave: the first wave's 6 tasks, then `after` and `fig`.
+    // Each `per_x` point read its own row of `sweep`.
+    assert_eq!(column(&s.table("per_x"), "upstream_x"), vec![1.0, 2.0]);
+    // One array per wave: the first wave's 6 tasks, then `after`, `per_x` and `fig`.
     let log = String::from_utf8(s.read("cache/slurm/submissions.log")).unwrap();
     assert_eq!(log.lines().count(), 2, "{log}");
     assert!(log.lines().next().unwrap().contains("tasks=6"), "{log}");
     // A rerun computes nothing and submits nothing.
     let (code, _, r) = s.run("p.yaml", SLURM);
     assert_eq!(code, 0);
-    assert_eq!(r.count(None, "cached"), 8);
+    assert_eq!(r.count(None, "cached"), 10);
     assert_eq!(String::from_utf8(s.read("cache/slurm/submissions.log")).unwrap(), log);
 }
 

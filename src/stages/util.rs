@@ -21,15 +21,15 @@ pub struct SleepParams {
     pub round: Option<i32>,
 }
 
-/// Sleeps, then returns x (and the row count of its inputs).
+/// Sleeps, then returns x (and the row count of its inputs, and the sum of their `x`).
 pub struct Sleep;
 
 impl Kind for Sleep {
     const NAME: &'static str = "util.sleep";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const DOC: &'static str = "Waits `ms` milliseconds and returns `x` (for testing the orchestrator)";
     const SWEEPABLE: &'static [&'static str] = &["x"];
-    const COLUMNS: &'static [&'static str] = &["x", "upstream_rows"];
+    const COLUMNS: &'static [&'static str] = &["x", "upstream_rows", "upstream_x"];
     type Params = SleepParams;
 
     fn validate(p: &SleepParams) -> Vec<FieldError> {
@@ -53,7 +53,13 @@ impl Kind for Sleep {
             None => p.x,
         };
         let upstream_rows: i64 = inputs.tables.values().map(|t| t.n_rows() as i64).sum();
-        Ok(Table::new().with_f64("x", vec![x]).with("upstream_rows", ColumnData::I64(vec![upstream_rows])).into())
+        let upstream_x: f64 =
+            inputs.tables.values().filter_map(|t| t.f64_column("x").ok()).map(|c| c.iter().sum::<f64>()).sum();
+        Ok(Table::new()
+            .with_f64("x", vec![x])
+            .with("upstream_rows", ColumnData::I64(vec![upstream_rows]))
+            .with_f64("upstream_x", vec![upstream_x])
+            .into())
     }
 }
 

@@ -409,6 +409,9 @@ pub struct ManifestPoint {
     pub label: String,
     pub params: Value,
     pub key: Hash,
+    /// The hashes of the rows it read of the stages it needs row by row, by stage.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub inputs: BTreeMap<String, Hash>,
 }
 
 #[cfg(test)]

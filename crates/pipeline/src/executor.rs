@@ -16,7 +16,7 @@ use crate::cache::{Cache, LockMode, ManifestPoint, StageManifest};
 use crate::graph;
 use crate::key::{stage_hash, Hash};
 use crate::kind::{DynKind, Inputs, Output, Registry};
-use crate::plan::{plan_round, twin_reason, StagePlan};
+use crate::plan::{plan_round, twin_reason, MatchedInput, StagePlan};
 use crate::publish::{publish_stage, remove_stale_temporaries, OutputDirs};
 use crate::reason::Reason;
 use crate::report::{unix_ms, RunReport, Status, TaskRecord};
@@ -114,6 +114,8 @@ enum StageState {
         hash: Hash,
         table: Table,
         points: Vec<(Hash, Output)>,
+        /// Per point (in the order of `points`), its parameters.
+        params: Vec<serde_json::Value>,
         times: Vec<f64>,
     },
     Failed,
@@ -218,8 +220,24 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
             }
             let inputs: BTreeMap<String, Hash> = need_states
                 .iter()
+                .filter(|(n, _)| stage.matched(n).is_none())
                 .map(|(n, s)| match s {
                     StageState::Done { hash, .. } => ((*n).clone(), hash.clone()),
+                    _ => unreachable!(),
+                })
+                .collect();
+            let matched = stage
+                .matched
+                .iter()
+                .map(|m| match &states[&index[m.stage.as_str()]] {
+                    StageState::Done { points, params, .. } => MatchedInput {
+                        need: m.clone(),
+                        upstream: points
+                            .iter()
+                            .zip(params)
+                            .map(|((k, o), pa)| (pa.clone(), k.clone(), super::cache::output_hash(o)))
+                            .collect(),
+                    },
                     _ => unreachable!(),
                 })
                 .collect();
@@ -228,25 +246,28 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                 StagePlan {
                     prev: cache.read_manifest(&pid, &stage.name),
                     inputs,
+                    matched,
                     points: stage.points.clone(),
                     outs: Vec::new(),
                     failed: false,
                 },
             );
         }
-        // The inputs' tables, for computing.
-        let input_tables: BTreeMap<usize, Inputs> = plans
+        // The whole tables the stages need, for computing (the rows of the stages read row
+        // by row are assembled per task).
+        let input_tables: BTreeMap<usize, BTreeMap<String, &Table>> = plans
             .keys()
             .map(|&si| {
                 let tables = p.stages[si]
                     .needs
                     .iter()
+                    .filter(|n| p.stages[si].matched(n).is_none())
                     .map(|n| match &states[&index[n.as_str()]] {
                         StageState::Done { table, .. } => (n.clone(), table),
                         _ => unreachable!(),
                     })
                     .collect();
-                (si, Inputs { tables })
+                (si, tables)
             })
             .collect();
 
@@ -286,26 +307,78 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                         make_bar(&multi, &label, n)
                     });
                 }
+                // Per job, the points of each stage it needs: all of them, or for a stage read
+                // row by row, those that match it.
+                let job_needs: Vec<Vec<(String, Vec<usize>)>> = jobs
+                    .iter()
+                    .map(|j| {
+                        let stage = &p.stages[j.stage];
+                        let plan = &plans[&j.stage];
+                        stage
+                            .needs
+                            .iter()
+                            .map(|n| {
+                                match (&states[&index[n.as_str()]], plan.matched.iter().find(|m| &m.need.stage == n)) {
+                                    (StageState::Done { .. }, Some(m)) => (n.clone(), m.select(&j.params)),
+                                    (StageState::Done { points, .. }, None) => (n.clone(), (0..points.len()).collect()),
+                                    _ => unreachable!("a stage runs after the stages it needs are done"),
+                                }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                // The rows each job reads of the stages read row by row.
+                let job_rows: Vec<BTreeMap<String, Table>> = jobs
+                    .iter()
+                    .zip(&job_needs)
+                    .map(|(j, needs)| {
+                        needs
+                            .iter()
+                            .filter(|(n, _)| p.stages[j.stage].matched(n).is_some())
+                            .map(|(n, selected)| {
+                                let StageState::Done { points, .. } = &states[&index[n.as_str()]] else {
+                                    unreachable!()
+                                };
+                                let mut t = Table::new();
+                                for &i in selected {
+                                    t.append(&points[i].1.table)
+                                        .with_context(|| format!("assembling the rows of stage `{n}`"))?;
+                                }
+                                Ok((n.clone(), t))
+                            })
+                            .collect::<Result<_>>()
+                    })
+                    .collect::<Result<_>>()?;
+                let job_inputs: Vec<Inputs> = jobs
+                    .iter()
+                    .zip(&job_rows)
+                    .map(|(j, rows)| {
+                        let mut tables = input_tables[&j.stage].clone();
+                        tables.extend(rows.iter().map(|(n, t)| (n.clone(), t)));
+                        Inputs { tables }
+                    })
+                    .collect();
                 // Per job: its outcome, its wall time and when it started (seconds from the start of
                 // the run; not known for jobs run elsewhere).
                 let tasks: Vec<Task> = jobs
                     .iter()
-                    .map(|j| {
+                    .zip(&job_inputs)
+                    .zip(&job_needs)
+                    .map(|((j, inputs), needs)| {
                         let stage = &p.stages[j.stage];
                         let kind = registry.get(&stage.kind).expect("validated kinds");
                         Task {
                             key: &j.key,
                             kind,
                             params: &j.params,
-                            inputs: &input_tables[&j.stage],
-                            input_keys: stage
-                                .needs
+                            inputs,
+                            input_keys: needs
                                 .iter()
-                                .map(|n| match &states[&index[n.as_str()]] {
-                                    StageState::Done { points, .. } => {
-                                        (n.clone(), points.iter().map(|(k, _)| k.clone()).collect())
-                                    }
-                                    _ => unreachable!("a stage runs after the stages it needs are done"),
+                                .map(|(n, selected)| {
+                                    let StageState::Done { points, .. } = &states[&index[n.as_str()]] else {
+                                        unreachable!()
+                                    };
+                                    (n.clone(), selected.iter().map(|&i| points[i].0.clone()).collect())
                                 })
                                 .collect(),
                             time_limit: time_limit(stage, kind, opts),
@@ -410,7 +483,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
         drop(input_tables);
 
         // Assemble each stage of the wave.
-        for (si, plan) in plans {
+        for (si, mut plan) in plans {
             let stage = &p.stages[si];
             let kind = registry.get(&stage.kind).unwrap();
             let state = if plan.failed {
@@ -422,7 +495,8 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     Some(axis) => super::adaptive::publication_order(axis, &plan.points),
                     None => (0..plan.points.len()).collect(),
                 };
-                let mut outs = plan.outs;
+                let mut outs = std::mem::take(&mut plan.outs);
+                let params: Vec<serde_json::Value> = order.iter().map(|&i| plan.points[i].params.clone()).collect();
                 let (points, times): (Vec<(Hash, Output)>, Vec<f64>) = order
                     .iter()
                     .map(|&i| {
@@ -442,7 +516,7 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                     StageManifest {
                         kind: stage.kind.clone(),
                         version: kind.version(),
-                        inputs: plan.inputs,
+                        inputs: std::mem::take(&mut plan.inputs),
                         points: order
                             .iter()
                             .zip(&points)
@@ -450,11 +524,12 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
                                 label: plan.points[i].label.clone(),
                                 params: plan.points[i].params.clone(),
                                 key: k.clone(),
+                                inputs: plan.matched_inputs(&plan.points[i].params),
                             })
                             .collect(),
                     },
                 ));
-                StageState::Done { hash: stage_hash(&hashes), table, points, times }
+                StageState::Done { hash: stage_hash(&hashes), table, points, params, times }
             };
             states.insert(si, state);
         }

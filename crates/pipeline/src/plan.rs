@@ -5,11 +5,11 @@
 //! Points of two stages with the same key are one task, computed once.
 
 use crate::cache::{Cache, Miss, StageManifest};
-use crate::key::{task_key, Hash};
+use crate::key::{stage_hash, task_key, Hash};
 use crate::kind::{Output, Registry};
 use crate::reason::{ParamChange, Reason};
 use crate::report::{Status, TaskRecord};
-use crate::spec::{Pipeline, Point, Stage};
+use crate::spec::{MatchedNeed, Pipeline, Point, Stage};
 use crate::task::TaskError;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -23,11 +23,35 @@ pub struct Job {
     pub ran_on: Option<String>,
 }
 
+/// A needed stage read row by row (`MatchedNeed`), as a stage's plan sees it: per upstream
+/// point, its parameters, its task key and the hash of its output.
+pub struct MatchedInput {
+    pub need: MatchedNeed,
+    pub upstream: Vec<(serde_json::Value, Hash, Hash)>,
+}
+
+impl MatchedInput {
+    /// The upstream points that a point with parameters `params` reads (in the upstream
+    /// table's order).
+    pub fn select(&self, params: &serde_json::Value) -> Vec<usize> {
+        (0..self.upstream.len()).filter(|&i| self.need.matches(&self.upstream[i].0, params)).collect()
+    }
+
+    /// The hash of what a point with parameters `params` reads: its upstream points' outputs.
+    pub fn hash(&self, params: &serde_json::Value) -> Hash {
+        let hashes: Vec<Hash> = self.select(params).into_iter().map(|i| self.upstream[i].2.clone()).collect();
+        stage_hash(&hashes)
+    }
+}
+
 /// A stage of the current wave while its rounds run: its points so far (an adaptive stage
 /// adds some after each round) and, per point, its output once known.
 pub struct StagePlan {
     pub prev: Option<StageManifest>,
+    /// The hashes of the whole tables it needs, by stage.
     pub inputs: BTreeMap<String, Hash>,
+    /// The stages it reads row by row.
+    pub matched: Vec<MatchedInput>,
     pub points: Vec<Point>,
     /// Per point, once known: its key, output and the wall time of its task.
     pub outs: Vec<Option<(Hash, Output, f64)>>,
@@ -35,6 +59,18 @@ pub struct StagePlan {
 }
 
 impl StagePlan {
+    /// The hashes of the rows that the point `params` reads row by row, by stage.
+    pub fn matched_inputs(&self, params: &serde_json::Value) -> BTreeMap<String, Hash> {
+        self.matched.iter().map(|m| (m.need.stage.clone(), m.hash(params))).collect()
+    }
+
+    /// The hashes of everything the point `params` reads, by stage: what its key depends on.
+    pub fn point_inputs(&self, params: &serde_json::Value) -> BTreeMap<String, Hash> {
+        let mut all = self.inputs.clone();
+        all.extend(self.matched_inputs(params));
+        all
+    }
+
     /// Records the outcome of a job of this stage (a failure fails the stage).
     pub fn settle(&mut self, j: &Job, out: Result<Output, TaskError>, dt: f64) {
         match out {
@@ -75,7 +111,7 @@ pub fn plan_round(
         let forced = force.contains(&stage.name);
         for pi in plan.outs.len()..plan.points.len() {
             let pt = &plan.points[pi];
-            let key = task_key(&stage.kind, kind.version(), &pt.params, &plan.inputs);
+            let key = task_key(&stage.kind, kind.version(), &pt.params, &plan.point_inputs(&pt.params));
             let lookup = if forced { Err(Miss::Absent) } else { cache.get(&key) };
             match lookup {
                 Ok(entry) => {
@@ -94,6 +130,7 @@ pub fn plan_round(
                             stage,
                             kind.version(),
                             &plan.inputs,
+                            &plan.matched_inputs(&pt.params),
                             pt,
                             &key,
                             &p.overrides,
@@ -131,11 +168,13 @@ pub fn twin_reason(p: &Pipeline, first: &Job) -> Reason {
     Reason::SameTaskAs { stage: p.stages[first.stage].name.clone(), point: first.label.clone() }
 }
 
+#[allow(clippy::too_many_arguments)]
 pub fn stale_reason(
     prev: Option<&StageManifest>,
     stage: &Stage,
     version: u32,
     inputs: &BTreeMap<String, Hash>,
+    matched: &BTreeMap<String, Hash>,
     point: &Point,
     key: &str,
     overrides: &[String],
@@ -157,6 +196,15 @@ pub fn stale_reason(
                     .filter(|(n, h)| m.inputs.get(*n) != Some(*h))
                     .map(|(n, _)| n.clone())
                     .chain(m.inputs.keys().filter(|n| !inputs.contains_key(*n)).cloned())
+                    .collect();
+                Reason::InputChanged { stages }
+            } else if &mp.inputs != matched {
+                // The rows it reads of a stage it needs row by row.
+                let stages: Vec<String> = matched
+                    .iter()
+                    .filter(|(n, h)| mp.inputs.get(*n) != Some(*h))
+                    .map(|(n, _)| n.clone())
+                    .chain(mp.inputs.keys().filter(|n| !matched.contains_key(*n)).cloned())
                     .collect();
                 Reason::InputChanged { stages }
             } else if mp.key == key {

@@ -101,7 +101,22 @@ pub fn pipeline_schema(registry: &Registry) -> Value {
             "kind": {"oneOf": kinds, "description": "the stage kind (`repro kinds` lists them)"},
             "description": {"type": "string"},
             "params": {"type": "object"},
-            "needs": {"type": "array", "items": {"type": "string"}},
+            "needs": {
+                "type": "array",
+                "description": "the stages whose tables this stage reads; `{stage: NAME, match: [PARAM, ...]}` reads, per point, only the rows of the points of NAME whose parameters PARAM equal its own (a point's key then depends on those rows alone)",
+                "items": {"oneOf": [
+                    {"type": "string"},
+                    {
+                        "type": "object",
+                        "properties": {
+                            "stage": {"type": "string"},
+                            "match": {"type": "array", "items": {"type": "string"}, "minItems": 1}
+                        },
+                        "required": ["stage", "match"],
+                        "additionalProperties": false
+                    }
+                ]}
+            },
             "publish": {"type": "boolean", "description": "write the stage's table to the tables folder (default true; false: kept in the cache for the stages that need it)"},
             "time_limit": {"type": "number", "exclusiveMinimum": 0, "description": "each task's time limit in seconds (default: the kind's, `repro kinds KIND`); a task past it is recorded as timed out"}
         },

@@ -75,7 +75,11 @@ pub struct Point {
 pub struct Stage {
     pub name: String,
     pub kind: String,
+    /// The stages it reads, in order: the whole table of each, or for those in `matched`,
+    /// only the rows of the matching points.
     pub needs: Vec<String>,
+    /// The stages of `needs` read row by row (`needs: [{stage: S, match: [a, b]}]`).
+    pub matched: Vec<MatchedNeed>,
     pub points: Vec<Point>,
     /// The parameter whose points are refined after each round (`adaptive`), if any.
     pub adaptive: Option<AdaptiveAxis>,
@@ -88,6 +92,23 @@ pub struct Stage {
     /// Its tasks' time limit in seconds (`time_limit`; default: the kind's).
     pub time_limit_s: Option<f64>,
     pub location: Location,
+}
+
+/// A needed stage read row by row: each point of the stage that needs it gets the rows of
+/// the points of `stage` whose parameters named in `on` equal its own, and its task key
+/// depends on those points' outputs alone (adding a point upstream recomputes only the
+/// points that match it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatchedNeed {
+    pub stage: String,
+    pub on: Vec<String>,
+}
+
+impl MatchedNeed {
+    /// Whether an upstream point with parameters `upstream` matches the point `params`.
+    pub fn matches(&self, upstream: &Value, params: &Value) -> bool {
+        self.on.iter().all(|k| upstream.get(k).is_some_and(|v| !v.is_null() && Some(v) == params.get(k)))
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -104,6 +125,13 @@ pub struct Pipeline {
 impl Pipeline {
     pub fn stage(&self, name: &str) -> Option<&Stage> {
         self.stages.iter().find(|s| s.name == name)
+    }
+}
+
+impl Stage {
+    /// How the stage reads `need` row by row, if it does.
+    pub fn matched(&self, need: &str) -> Option<&MatchedNeed> {
+        self.matched.iter().find(|m| m.stage == need)
     }
 }
 

@@ -29,7 +29,7 @@ mod yaml;
 pub use yaml::to_json;
 
 use crate::kind::{FieldError, Registry};
-use crate::spec::{Diagnostic, InvalidPipeline, Location, Override, Pipeline, Point, Stage};
+use crate::spec::{Diagnostic, InvalidPipeline, Location, MatchedNeed, Override, Pipeline, Point, Stage, Warning};
 use marked_yaml::types::{MarkedMappingNode, MarkedScalarNode, Node};
 use std::collections::{BTreeMap, BTreeSet};
 use sweep::{check_ranges_shown, expand_points, ranges_shown};
@@ -231,6 +231,8 @@ pub fn parse_with(
 struct ParsedStage {
     stage: Stage,
     need_locations: Vec<Location>,
+    /// Where the `match` of each of `stage.matched` is.
+    match_locations: Vec<Location>,
 }
 
 fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedStage> {
@@ -283,6 +285,8 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
     };
     let mut needs = Vec::new();
     let mut need_locations = Vec::new();
+    let mut matched = Vec::new();
+    let mut match_locations = Vec::new();
     match map.get_node("needs") {
         None => {}
         Some(Node::Sequence(seq)) => {
@@ -292,11 +296,27 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
                         needs.push(s.as_str().to_string());
                         need_locations.push(cx.loc(n));
                     }
-                    _ => cx.err(cx.loc(n), format!("stage `{name}`: each entry of `needs` must be a stage name")),
+                    Node::Mapping(m) => {
+                        if let Some((need, location)) = parse_matched_need(cx, &name, m) {
+                            needs.push(need.stage.clone());
+                            need_locations.push(cx.loc(n));
+                            matched.push(need);
+                            match_locations.push(location);
+                        }
+                    }
+                    _ => cx.err(
+                        cx.loc(n),
+                        format!("stage `{name}`: each entry of `needs` must be a stage name or `{{stage: NAME, match: [PARAM, ...]}}`"),
+                    ),
                 }
             }
         }
         Some(n) => cx.err(cx.loc(n), format!("stage `{name}`: `needs` must be a list of stage names")),
+    }
+    for (i, n) in needs.iter().enumerate() {
+        if needs[..i].contains(n) {
+            cx.err(need_locations[i].clone(), format!("stage `{name}`: `needs` names `{n}` twice"));
+        }
     }
     let Some(kind) = registry.get(&kind_name) else {
         let known: Vec<_> = registry.names().collect();
@@ -356,6 +376,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             name,
             kind: kind_name,
             needs,
+            matched,
             points: checked,
             adaptive,
             ranges_from,
@@ -364,7 +385,46 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             location: mapping_location(cx.file, map),
         },
         need_locations,
+        match_locations,
     })
+}
+
+/// A `needs` entry read row by row: `{stage: NAME, match: [PARAM, ...]}`, and where its
+/// `match` is.
+fn parse_matched_need(cx: &mut Ctx, name: &str, m: &MarkedMappingNode) -> Option<(MatchedNeed, Location)> {
+    check_keys(cx, m, &["stage", "match"], "a `needs` entry");
+    let stage = match m.get_node("stage") {
+        Some(Node::Scalar(s)) => s.as_str().to_string(),
+        Some(n) => {
+            cx.err(cx.loc(n), format!("stage `{name}`: `stage` of a `needs` entry must be a stage name"));
+            return None;
+        }
+        None => {
+            cx.err(mapping_location(cx.file, m), format!("stage `{name}`: a `needs` entry with `match` needs `stage`"));
+            return None;
+        }
+    };
+    let on: Vec<String> = match m.get_node("match") {
+        Some(Node::Sequence(seq)) if !seq.is_empty() && seq.iter().all(|p| p.as_scalar().is_some()) => {
+            seq.iter().map(|p| p.as_scalar().unwrap().as_str().to_string()).collect()
+        }
+        Some(n) => {
+            cx.err(
+                cx.loc(n),
+                format!("stage `{name}`: `match` of need `{stage}` must be a non-empty list of parameter names"),
+            );
+            return None;
+        }
+        None => {
+            cx.err(
+                mapping_location(cx.file, m),
+                format!("stage `{name}`: need `{stage}` as a mapping needs `match` (else name the stage alone)"),
+            );
+            return None;
+        }
+    };
+    let location = m.get_node("match").map_or_else(|| mapping_location(cx.file, m), |n| cx.loc(n));
+    Some((MatchedNeed { stage, on }, location))
 }
 
 fn describe(e: &FieldError) -> String {
@@ -485,6 +545,53 @@ fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
                     let hint = suggestion(need, &names).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
                     cx.err(loc.clone(), format!("stage `{}` needs `{need}`, which names no stage{hint}", s.stage.name));
                 }
+            }
+        }
+    }
+    // A need read row by row matches on parameters that both stages have; a point that
+    // matches no point of it gets no rows (a warning: probably not what was meant).
+    for s in stages {
+        for (m, loc) in s.stage.matched.iter().zip(&s.match_locations) {
+            let Some(&j) = index.get(m.stage.as_str()) else { continue };
+            let upstream = &stages[j].stage;
+            let mut missing = false;
+            for p in &m.on {
+                for (st, what) in [(&s.stage, "this stage"), (upstream, "the stage it needs")] {
+                    if st.points.iter().any(|pt| pt.params.get(p).is_none_or(|v| v.is_null())) {
+                        missing = true;
+                        cx.err(
+                            loc.clone(),
+                            format!(
+                                "stage `{}`: `match` names `{p}`, which is not a parameter of every point of {what} (`{}`)",
+                                s.stage.name, st.name
+                            ),
+                        );
+                    }
+                }
+            }
+            if missing {
+                continue;
+            }
+            let lonely: Vec<&str> = s
+                .stage
+                .points
+                .iter()
+                .filter(|pt| !upstream.points.iter().any(|up| m.matches(&up.params, &pt.params)))
+                .map(|pt| if pt.label.is_empty() { "(the point)" } else { pt.label.as_str() })
+                .collect();
+            if !lonely.is_empty() && upstream.adaptive.is_none() {
+                cx.warnings.push(Warning(Diagnostic {
+                    location: loc.clone(),
+                    message: format!(
+                        "stage `{}`: {} of its {} points match no point of `{}` on {} (they get no rows of it), e.g. {}",
+                        s.stage.name,
+                        lonely.len(),
+                        s.stage.points.len(),
+                        m.stage,
+                        m.on.join(", "),
+                        lonely[0]
+                    ),
+                }));
             }
         }
     }
