@@ -5,7 +5,7 @@
 pub mod pulloff;
 
 use super::material::with_material_fields;
-use crate::bem::solver::{self, Mesh, Params, Solution};
+use crate::bem::solver::{self, Mesh, Params, Solution, Start};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use crate::stages::{bound, finite};
@@ -58,6 +58,15 @@ pub struct BemParams {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub newton_tol: Option<f64>,
+    /// A stage of `needs` whose rows hold converged states (a `bem.profile`'s: `X`, `H`,
+    /// `approach`), best read row by row (`needs: [{stage: S, match: [lambda, W, k]}]`): the
+    /// refinement's first mesh starts by Newton from the state, among those of this
+    /// lambda, W, k and material, at the speed nearest V0 (in log V0), instead of the
+    /// continuation from the relaxed state (the continuation if that fails). mu* changes
+    /// within Newton's tolerance only; without such rows the point is solved from scratch.
+    /// Not with a fixed `n`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start: Option<String>,
 }
 }
 
@@ -101,9 +110,77 @@ impl BemParams {
         }
     }
 
-    /// `solve_at`, the refinement's first level started from `near` (a converged solve
-    /// of the same point at another speed) when there is one and the mesh is not fixed.
-    fn solve_near(&self, physics: &Params, near: Option<&Solution>) -> (Solution, f64) {
+    /// The point solved, from the state its `start` rows give if any (`start_state`); the
+    /// speed of that state, if one was used.
+    fn solve(&self, inputs: &Inputs) -> Result<(Solution, f64, Option<f64>)> {
+        let physics = self.physics();
+        Ok(match self.start_state(inputs)? {
+            Some((v0, start)) => {
+                let (s, estimate) = self.solve_near(&physics, Some(&start));
+                (s, estimate, Some(v0))
+            }
+            None => {
+                let (s, estimate) = self.solve_at(&physics);
+                (s, estimate, None)
+            }
+        })
+    }
+
+    /// The state named by `start`: of the rows of that stage with this point's lambda, W, k
+    /// and material, those of the speed nearest V0 in log V0 (the lower of two equally
+    /// near), with that speed. None without `start` or without such rows.
+    fn start_state(&self, inputs: &Inputs) -> Result<Option<(f64, Start)>> {
+        let Some(stage) = &self.start else { return Ok(None) };
+        let t = inputs.table(stage)?;
+        if t.n_rows() == 0 {
+            return Ok(None);
+        }
+        let column = |c: &str| match t.column(c) {
+            Some(ColumnData::F64(v)) => Ok(v.as_slice()),
+            _ => Err(anyhow::anyhow!(
+                "`start`: stage `{stage}` has no numeric column `{c}` (a `bem.profile`'s rows hold the states)"
+            )),
+        };
+        let (lambda, w, k, v0) = (column("lambda")?, column("W")?, column("k")?, column("V0")?);
+        let (x, h, approach) = (column("X")?, column("H")?, column("approach")?);
+        // (The SLS has no `material` column.)
+        let material = |t: &Table, i: usize| match t.column("material") {
+            Some(ColumnData::Str(v)) => v.get(i).cloned(),
+            _ => None,
+        };
+        let own = material(&self.parameter_columns(1), 0);
+        let materials: Vec<Option<String>> = match t.column("material") {
+            Some(_) => (0..t.n_rows()).map(|i| material(t, i)).collect(),
+            None => vec![None; t.n_rows()],
+        };
+        let rows: Vec<usize> = (0..t.n_rows())
+            .filter(|&i| lambda[i] == self.lambda && w[i] == self.W && k[i] == self.k && materials[i] == own)
+            .collect();
+        let mut speeds: Vec<f64> = rows.iter().map(|&i| v0[i]).collect();
+        speeds.sort_by(f64::total_cmp);
+        speeds.dedup();
+        let distance = |v: f64| (v.max(f64::MIN_POSITIVE).ln() - self.V0.max(f64::MIN_POSITIVE).ln()).abs();
+        let Some(nearest) =
+            speeds.into_iter().min_by(|a, b| distance(*a).total_cmp(&distance(*b)).then(a.total_cmp(b)))
+        else {
+            return Ok(None);
+        };
+        let rows: Vec<usize> = rows.into_iter().filter(|&i| v0[i] == nearest).collect();
+        let start = Start {
+            x: rows.iter().map(|&i| x[i]).collect(),
+            h: rows.iter().map(|&i| h[i]).collect(),
+            delta: approach[rows[0]],
+        };
+        if start.x.len() < 2 || start.x.windows(2).any(|p| p[1] <= p[0]) {
+            anyhow::bail!("`start`: the rows of stage `{stage}` at V0 = {nearest} are not one profile (X must rise)");
+        }
+        Ok(Some((nearest, start)))
+    }
+
+    /// `solve_at`, the refinement's first level started from `near` (the state of a
+    /// converged solve of the same point at another speed) when there is one and the mesh
+    /// is not fixed.
+    fn solve_near(&self, physics: &Params, near: Option<&Start>) -> (Solution, f64) {
         let n_max = self.n_max.unwrap_or(solver::DEFAULT_N_MAX);
         match self.n {
             Some(_) => self.solve_at(physics),
@@ -117,6 +194,9 @@ impl BemParams {
             e.push(FieldError::new("W", format!("must be nonzero and finite, got {}", self.W)));
         }
         self.material().validate(&mut e);
+        if self.start.is_some() && self.n.is_some() {
+            e.push(FieldError::new("start", "starts the refinement's first mesh: not with a fixed `n`"));
+        }
         e
     }
 
@@ -178,6 +258,7 @@ impl Kind for BemSweep {
         "n",
         "half_length",
         "zone_elements",
+        "start_V0",
         "wall_time_s",
     ];
     type Params = BemParams;
@@ -190,9 +271,13 @@ impl Kind for BemSweep {
         Some(p.memory_bytes())
     }
 
-    fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
+    fn referenced_stages(p: &BemParams) -> Vec<(String, String)> {
+        p.start.iter().map(|s| ("start".to_string(), s.clone())).collect()
+    }
+
+    fn run(p: &BemParams, inputs: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (s, estimate) = p.solve_at(&p.physics());
+        let (s, estimate, started) = p.solve(inputs)?;
         let f = s.friction();
         let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
         let (p_max, p_min) = extremes(&s);
@@ -218,9 +303,13 @@ impl Kind for BemSweep {
             .with("n", ColumnData::I64(vec![s.mesh.n as i64]))
             .with_f64("half_length", vec![s.mesh.half_length])
             // Elements per cohesive zone (`solver::zone_elements`), a meshing diagnostic.
-            .with_f64("zone_elements", vec![finite(solver::zone_elements(p.lambda, s.mesh))])
-            .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]);
-        Ok(t.into())
+            .with_f64("zone_elements", vec![finite(solver::zone_elements(p.lambda, s.mesh))]);
+        // With `start`: the speed of the state it started from (-1: none matched).
+        let t = match &p.start {
+            Some(_) => t.with_f64("start_V0", vec![started.unwrap_or(-1.0)]),
+            None => t,
+        };
+        Ok(t.with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64()]).into())
     }
 }
 
@@ -233,7 +322,7 @@ pub struct BemProfile;
 
 impl Kind for BemProfile {
     const NAME: &'static str = "bem.profile";
-    const VERSION: u32 = 16;
+    const VERSION: u32 = 17;
     const DOC: &'static str =
         "Chapter 4 BEM: pressure P(X), displacement U(X), gap H(X) and friction integrand P dU/dX of one point";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
@@ -256,6 +345,7 @@ impl Kind for BemProfile {
         "error_estimate",
         "n",
         "zone_elements",
+        "approach",
         "wall_time_s",
     ];
     type Params = BemParams;
@@ -268,9 +358,13 @@ impl Kind for BemProfile {
         Some(p.memory_bytes())
     }
 
-    fn run(p: &BemParams, _: &Inputs) -> Result<Output> {
+    fn referenced_stages(p: &BemParams) -> Vec<(String, String)> {
+        p.start.iter().map(|s| ("start".to_string(), s.clone())).collect()
+    }
+
+    fn run(p: &BemParams, inputs: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let (s, estimate) = p.solve_at(&p.physics());
+        let (s, estimate, _) = p.solve(inputs)?;
         if !s.converged {
             anyhow::bail!(
                 "the point did not converge ({}: residual {:e} after {} iterations)",
@@ -299,6 +393,8 @@ impl Kind for BemProfile {
             .with_f64("error_estimate", vec![estimate.min(f64::MAX); n])
             .with("n", ColumnData::I64(vec![s.mesh.n as i64; n]))
             .with_f64("zone_elements", vec![finite(solver::zone_elements(p.lambda, s.mesh)); n])
+            // The approach Delta: with X and H, the state a `start` reads.
+            .with_f64("approach", vec![finite(s.delta); n])
             .with_f64("wall_time_s", vec![t0.elapsed().as_secs_f64(); n]);
         Ok(t.into())
     }
@@ -364,6 +460,7 @@ impl MaximaParams {
             rel_tol: self.rel_tol,
             n_max: self.n_max,
             newton_tol: None,
+            start: None,
             s: None,
             tau_ratio: None,
             per_decade: None,
@@ -419,7 +516,7 @@ impl Kind for BemMaxima {
             p.V0_range[1],
             p.grid,
             p.log_tol,
-            |physics, near| point.solve_near(physics, near),
+            |physics, near| point.solve_near(physics, near.and_then(Solution::start).as_ref()),
         );
         let t = Table::new()
             .with_f64("lambda", vec![p.lambda])

@@ -110,7 +110,7 @@ mod tests {
         let cold =
             max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, _| solve_to_tolerance(p, mesh, DEFAULT_REL_TOL, 16_000));
         let warm = max_over_speed(&base, 1e-3, 1e3, 13, 0.01, |p, near| {
-            solve_to_tolerance_from(p, mesh, DEFAULT_REL_TOL, 16_000, near)
+            solve_to_tolerance_from(p, mesh, DEFAULT_REL_TOL, 16_000, near.and_then(Solution::start).as_ref())
         });
         assert!(cold.all_converged && warm.all_converged);
         assert_eq!((cold.v0, cold.evaluations), (warm.v0, warm.evaluations));

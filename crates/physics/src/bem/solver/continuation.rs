@@ -147,19 +147,31 @@ pub(super) fn interpolated_newton(
     max_iter: usize,
     pre: &mut Preconditioner,
 ) -> Solution {
-    let params = &coarse.params;
-    let xs = &coarse.x;
+    started_newton(&coarse.params, &coarse.x, &coarse.h, coarse.delta, mesh, max_iter, pre)
+}
+
+/// Newton for `params` on `mesh` from the linear interpolation of the gap `h` at the nodes
+/// `xs` (constant beyond them) and the approach `delta`.
+pub(super) fn started_newton(
+    params: &Params,
+    xs: &[f64],
+    h: &[f64],
+    delta: f64,
+    mesh: Mesh,
+    max_iter: usize,
+    pre: &mut Preconditioner,
+) -> Solution {
     let m = xs.len();
     let h: Vec<f64> = (0..mesh.n)
         .map(|i| {
             let x = mesh.x(i);
             let j = xs.partition_point(|&xc| xc < x).clamp(1, m - 1);
             let t = ((x - xs[j - 1]) / (xs[j] - xs[j - 1])).clamp(0.0, 1.0);
-            coarse.h[j - 1] + t * (coarse.h[j] - coarse.h[j - 1])
+            h[j - 1] + t * (h[j] - h[j - 1])
         })
         .collect();
     let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
-    newton(&op, params, Control::Load(params.w), h, coarse.delta, max_iter, pre)
+    newton(&op, params, Control::Load(params.w), h, delta, max_iter, pre)
 }
 
 /// Newton iterations allowed to one step of the lambda continuation before it counts as

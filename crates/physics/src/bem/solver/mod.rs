@@ -44,7 +44,7 @@ pub use refinement::{
     refine, solve_to_tolerance, solve_to_tolerance_from, solve_to_tolerance_shares, solve_with_estimate, ErrorShares,
     DOMAIN_SAFETY, MESH_SAFETY,
 };
-pub use solution::{Friction, Solution, Termination};
+pub use solution::{Friction, Solution, Start, Termination};
 pub use system::Control;
 
 #[cfg(test)]

@@ -3,10 +3,10 @@
 //! discretisation error with a safety factor, the domain's truncation error, and refinement
 //! until the estimate meets a relative tolerance (`solve_to_tolerance`).
 
-use super::continuation::{interpolated_newton, solve};
+use super::continuation::{interpolated_newton, solve, started_newton};
 use super::params::{domain_rel_error, Mesh, Params};
 use super::precondition::{nested_ratio, ActiveLu, Preconditioner, DROP, TWO_GRID_MIN_N};
-use super::solution::Solution;
+use super::solution::{Solution, Start};
 use super::system::{Control, Operator, System};
 use crate::numerics::extrapolation;
 
@@ -163,16 +163,17 @@ pub fn solve_to_tolerance_shares(params: &Params, mesh: Mesh, rel_tol: f64, n_ma
     refine_to(params, mesh, rel_tol, n_max, true, None)
 }
 
-/// `solve_to_tolerance`, its first level started by Newton from `neighbour` (if any), a
-/// converged solution of the same lambda, W, k and domain at another speed (interpolated
+/// `solve_to_tolerance`, its first level started by Newton from `neighbour` (if any), the
+/// state of a converged solution of the same lambda, W and k at another speed (interpolated
 /// onto the mesh), instead of the continuation from the relaxed state; the continuation if
-/// that fails. What a search over V0 uses, from its nearest solve so far.
+/// that fails (its iterations counted too). What a search over V0 uses, from its nearest
+/// solve so far, and a sweep point given a start (`bem.sweep`'s `start`).
 pub fn solve_to_tolerance_from(
     params: &Params,
     mesh: Mesh,
     rel_tol: f64,
     n_max: usize,
-    neighbour: Option<&Solution>,
+    neighbour: Option<&Start>,
 ) -> (Solution, f64) {
     let (s, shares) = refine_to(params, mesh, rel_tol, n_max, true, neighbour);
     (s, shares.reported())
@@ -187,14 +188,14 @@ fn refine_to(
     rel_tol: f64,
     n_max: usize,
     three_levels: bool,
-    neighbour: Option<&Solution>,
+    neighbour: Option<&Start>,
 ) -> (Solution, ErrorShares) {
     let first = Mesh { n: (mesh.n / 2).max(8), ..mesh };
-    let mut coarse = match neighbour.filter(|s| s.converged) {
-        Some(s) => {
-            let start = Solution { params: params.clone(), ..s.clone() };
-            or_continuation(interpolated_newton(&start, first, 40, &mut Preconditioner::default()), first)
-        }
+    let mut coarse = match neighbour.filter(|s| s.x.len() >= 2 && s.x.len() == s.h.len()) {
+        Some(s) => or_continuation(
+            started_newton(params, &s.x, &s.h, s.delta, first, 40, &mut Preconditioner::default()),
+            first,
+        ),
         None => solve(params, first),
     };
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);

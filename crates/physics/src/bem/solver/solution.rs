@@ -6,6 +6,16 @@ use super::params::{Mesh, Params};
 use crate::lennard_jones::ALPHA;
 use std::f64::consts::PI;
 
+/// A state to start Newton from: the gap H at the nodes X and the approach Delta of a
+/// converged solution of the same lambda, W and k (at another speed), interpolated onto the
+/// mesh to be solved (`refinement::solve_to_tolerance_from`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Start {
+    pub x: Vec<f64>,
+    pub h: Vec<f64>,
+    pub delta: f64,
+}
+
 /// A solved (or not) point with its fields.
 #[derive(Clone, Debug)]
 pub struct Solution {
@@ -74,6 +84,11 @@ pub struct Friction {
 }
 
 impl Solution {
+    /// Its state as a start for another solve (`Start`); None unless converged.
+    pub fn start(&self) -> Option<Start> {
+        self.converged.then(|| Start { x: self.x.clone(), h: self.h.clone(), delta: self.delta })
+    }
+
     /// Marks the solution as stopped for `why` (not converged unless `why` is `Converged`).
     pub fn stop(&mut self, why: Termination) {
         self.termination = why;
