@@ -127,3 +127,13 @@ fn a_wrong_matched_need_is_located_and_explained() {
     );
     assert!(err.contains("`needs` names `up` twice"), "{err}");
 }
+
+#[test]
+fn the_graph_labels_a_need_read_row_by_row() {
+    let s = Scratch::new("matched-dag");
+    s.write("p.yaml", &pipeline("[1, 2]", 3, "[1, 2]"));
+    let out = s.repro(&["dag", "p.yaml"]);
+    let dot = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(dot.contains("\"up\" -> \"down\" [label=\"by x\"];"), "{dot}");
+    assert!(dot.contains("\"up\" -> \"whole\";"), "{dot}");
+}

@@ -82,7 +82,8 @@ pub fn with_ancestors(p: &Pipeline, targets: &[usize]) -> BTreeSet<usize> {
 }
 
 /// The pipeline as a Graphviz digraph: one node per stage (kind and number of points), an
-/// edge per need, and a dashed one from a figure to each sweep that samples its range.
+/// edge per need (labelled `by PARAM, ...` when read row by row), and a dashed one from a
+/// figure to each sweep that samples its range.
 pub fn to_dot(p: &Pipeline) -> String {
     to_dot_with(p, None, &BTreeMap::new())
 }
@@ -135,7 +136,9 @@ pub fn to_dot_with(p: &Pipeline, only: Option<&BTreeSet<usize>>, status: &BTreeM
     let visible = |n: &str| index.get(n).is_some_and(|&i| shown(i));
     for st in p.stages.iter().filter(|st| visible(&st.name)) {
         for n in st.needs.iter().filter(|n| visible(n)) {
-            s.push_str(&format!("  \"{n}\" -> \"{}\";\n", st.name));
+            // A need read row by row is labelled with the parameters it matches on.
+            let label = st.matched(n).map_or(String::new(), |m| format!(" [label=\"by {}\"]", m.on.join(", ")));
+            s.push_str(&format!("  \"{n}\" -> \"{}\"{label};\n", st.name));
         }
     }
     // A figure whose declared range fixes a sweep's points: dashed, against the data flow.
