@@ -2,7 +2,7 @@
 //! the same mu* as from scratch, for fewer Newton iterations, and the start each point used.
 
 mod common;
-use common::{column, Scratch};
+use common::{column, rejected, Scratch};
 
 const PIPELINE: &str = r#"stages:
   - name: starts
@@ -71,11 +71,7 @@ fn a_start_needs_the_refinement_and_a_needed_stage() {
             "`start` refers to stage `starts`, which is not in its `needs`",
         ),
     ] {
-        let s = Scratch::new(name);
-        s.write("p.yaml", &format!("{up}{stage}"));
-        let out = s.repro(&["run", "p.yaml", "-q"]);
-        let err = String::from_utf8_lossy(&out.stderr).to_string();
-        assert_eq!(out.status.code(), Some(2), "{err}");
+        let err = rejected(name, &format!("{up}{stage}"));
         assert!(err.contains(expected), "{err}");
     }
 }

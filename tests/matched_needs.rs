@@ -3,7 +3,7 @@
 //! depends on those rows alone (read from the run report and the tables, not assumed).
 
 mod common;
-use common::{column, Scratch};
+use common::{column, rejected, Scratch};
 use serde_json::json;
 
 /// `up` sweeps x (rounded to `round` decimals); `down` reads, per point, the rows of `up`
@@ -81,16 +81,6 @@ fn a_point_that_matches_nothing_is_warned_of() {
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(err.contains("p.yaml:7:32: warning:"), "{err}");
     assert!(err.contains("1 of its 3 points match no point of `up` on x"), "{err}");
-}
-
-fn rejected(name: &str, yaml: &str) -> String {
-    let s = Scratch::new(name);
-    s.write("p.yaml", yaml);
-    let out = s.repro(&["run", "p.yaml", "-q"]);
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(!s.exists("cache"), "an invalid pipeline must not touch the cache");
-    err
 }
 
 #[test]

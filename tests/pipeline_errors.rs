@@ -2,20 +2,7 @@
 //! wrong; nothing is run or written; the exit code says "invalid input" (2).
 
 mod common;
-use common::Scratch;
-
-/// Runs an invalid pipeline; asserts exit code 2, no cache and no outputs; returns stderr.
-fn rejected(name: &str, yaml: &str) -> String {
-    let s = Scratch::new(name);
-    s.write("p.yaml", yaml);
-    let out = s.repro(&["run", "p.yaml", "-q"]);
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(!s.exists("cache"), "an invalid pipeline must not touch the cache");
-    assert!(!s.exists("figures") && !s.exists("tables"), "an invalid pipeline must not write outputs");
-    assert!(stderr.contains("nothing was run"), "{stderr}");
-    stderr
-}
+use common::{rejected, Scratch};
 
 #[test]
 fn unknown_stage_kind_is_located_and_suggests_a_name() {

@@ -191,22 +191,10 @@ pub fn stale_reason(
             if m.version != version {
                 Reason::CodeVersionChanged { kind: stage.kind.clone(), from: m.version, to: version }
             } else if &m.inputs != inputs {
-                let stages: Vec<String> = inputs
-                    .iter()
-                    .filter(|(n, h)| m.inputs.get(*n) != Some(*h))
-                    .map(|(n, _)| n.clone())
-                    .chain(m.inputs.keys().filter(|n| !inputs.contains_key(*n)).cloned())
-                    .collect();
-                Reason::InputChanged { stages }
+                Reason::InputChanged { stages: changed_inputs(&m.inputs, inputs) }
             } else if &mp.inputs != matched {
                 // The rows it reads of a stage it needs row by row.
-                let stages: Vec<String> = matched
-                    .iter()
-                    .filter(|(n, h)| mp.inputs.get(*n) != Some(*h))
-                    .map(|(n, _)| n.clone())
-                    .chain(mp.inputs.keys().filter(|n| !matched.contains_key(*n)).cloned())
-                    .collect();
-                Reason::InputChanged { stages }
+                Reason::InputChanged { stages: changed_inputs(&mp.inputs, matched) }
             } else if mp.key == key {
                 Reason::EntryMissing
             } else {
@@ -239,6 +227,15 @@ pub fn stale_reason(
             }
         }
     }
+}
+
+/// The stages whose input hash differs between `before` and `now` (or is in only one).
+fn changed_inputs(before: &BTreeMap<String, Hash>, now: &BTreeMap<String, Hash>) -> Vec<String> {
+    now.iter()
+        .filter(|(n, h)| before.get(*n) != Some(*h))
+        .map(|(n, _)| n.clone())
+        .chain(before.keys().filter(|n| !now.contains_key(*n)).cloned())
+        .collect()
 }
 
 /// A value for a message: at most 40 characters.

@@ -110,6 +110,11 @@ impl BemParams {
         }
     }
 
+    /// The stage `start` names (which must be in `needs`).
+    fn referenced_stages(&self) -> Vec<(String, String)> {
+        self.start.iter().map(|s| ("start".to_string(), s.clone())).collect()
+    }
+
     /// The point solved, from the state its `start` rows give if any (`start_state`); the
     /// speed of that state, if one was used.
     fn solve(&self, inputs: &Inputs) -> Result<(Solution, f64, Option<f64>)> {
@@ -272,7 +277,7 @@ impl Kind for BemSweep {
     }
 
     fn referenced_stages(p: &BemParams) -> Vec<(String, String)> {
-        p.start.iter().map(|s| ("start".to_string(), s.clone())).collect()
+        p.referenced_stages()
     }
 
     fn run(p: &BemParams, inputs: &Inputs) -> Result<Output> {
@@ -359,7 +364,7 @@ impl Kind for BemProfile {
     }
 
     fn referenced_stages(p: &BemParams) -> Vec<(String, String)> {
-        p.start.iter().map(|s| ("start".to_string(), s.clone())).collect()
+        p.referenced_stages()
     }
 
     fn run(p: &BemParams, inputs: &Inputs) -> Result<Output> {
