@@ -55,8 +55,17 @@ fn fifty_kills_at_random_moments_resume_to_the_same_outputs() {
     reference.write("p.yaml", &yaml);
     let t0 = Instant::now();
     assert_eq!(reference.run("p.yaml", &["--jobs", "2"]).0, 0);
-    let total = t0.elapsed().as_secs_f64();
+    let mut total = t0.elapsed().as_secs_f64();
     let expected = outputs(&reference);
+    // The run's length is the least of three cold runs: the first start of the binary can
+    // take several times a later one, and kills timed on it would land after most runs end.
+    for i in 0..2 {
+        let again = Scratch::new(&format!("kills-ref-{i}"));
+        again.write("p.yaml", &yaml);
+        let t0 = Instant::now();
+        assert_eq!(again.run("p.yaml", &["--jobs", "2"]).0, 0);
+        total = total.min(t0.elapsed().as_secs_f64());
+    }
     let mut rng = Rng(0x5eed_0001);
     let (mut computing, mut publishing, mut finished) = (0, 0, 0);
     // Where the kills near the end land: narrowed towards the short window in which every
