@@ -16,6 +16,10 @@ const PIPELINE: &str = r#"stages:
     kind: bem.sweep
     needs: [{stage: starts, match: [lambda, W, k]}]
     params: {lambda: [1, 2], W: 1, k: 0.1, V0: [0.003, 0.3, 1, 30], start: starts}
+  - name: other_material
+    kind: bem.sweep
+    needs: [{stage: starts, match: [lambda, W, k]}]
+    params: {lambda: 1, W: 1, k: 0.1, V0: 0.3, s: 0.25, start: starts}
 "#;
 
 #[test]
@@ -42,6 +46,8 @@ fn a_started_sweep_gives_the_same_friction_for_fewer_iterations() {
         assert_eq!(it_a[i], it_b[i]);
     }
     assert_eq!(column(&a, "n"), column(&b, "n"), "the same meshes");
+    // The starts are of the standard linear solid: a power-law material matches none of them.
+    assert_eq!(column(&s.table("other_material"), "start_V0"), vec![-1.0]);
     // Starts for lambda = 2 too: only the points that match them are recomputed.
     let yaml = PIPELINE.replace(
         "params: {lambda: 1, W: 1, k: 0.1, V0: [0.1, 10]}",

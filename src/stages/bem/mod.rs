@@ -149,17 +149,15 @@ impl BemParams {
         let (lambda, w, k, v0) = (column("lambda")?, column("W")?, column("k")?, column("V0")?);
         let (x, h, approach) = (column("X")?, column("H")?, column("approach")?);
         // (The SLS has no `material` column.)
-        let material = |t: &Table, i: usize| match t.column("material") {
-            Some(ColumnData::Str(v)) => v.get(i).cloned(),
+        let materials = |t: &Table| match t.column("material") {
+            Some(ColumnData::Str(v)) => Some(v.clone()),
             _ => None,
         };
-        let own = material(&self.parameter_columns(1), 0);
-        let materials: Vec<Option<String>> = match t.column("material") {
-            Some(_) => (0..t.n_rows()).map(|i| material(t, i)).collect(),
-            None => vec![None; t.n_rows()],
-        };
+        let own = materials(&self.parameter_columns(1)).map(|v| v[0].clone());
+        let theirs = materials(t);
+        let material = |i: usize| theirs.as_ref().map(|v| &v[i]);
         let rows: Vec<usize> = (0..t.n_rows())
-            .filter(|&i| lambda[i] == self.lambda && w[i] == self.W && k[i] == self.k && materials[i] == own)
+            .filter(|&i| lambda[i] == self.lambda && w[i] == self.W && k[i] == self.k && material(i) == own.as_ref())
             .collect();
         let mut speeds: Vec<f64> = rows.iter().map(|&i| v0[i]).collect();
         speeds.sort_by(f64::total_cmp);
