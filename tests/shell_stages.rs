@@ -270,3 +270,35 @@ fn the_landing_criterion_counts_only_the_drops_an_experiment_sees() {
     let landing = col(&land, "delta_landing_over_R")[0];
     assert!((landing - 0.21).abs() < 0.006, "landing at delta/R {landing}");
 }
+
+#[test]
+fn the_frictional_unloadings_of_fig_3_8_reach_zero() {
+    // Fig. 3.8's rough and moderate shells (`exp_rough`, `exp_moderate` of
+    // pipelines/thesis.yaml: R = 25, h = 0.9, gamma 0.11e-3 and 0.145e-3 N/mm, mu 0.75 and
+    // 1) pressed to delta/R = 0.35 without a snap and unloaded on the flattened branch. Near
+    // delta/R 0.22-0.28 the unloading's stick-slip pattern changes and converging steps take
+    // 40-57 Newton iterations (measured); a halving walk whose runs stopped at 30 ended one
+    // of the two legs there (which one depended on the factorisations' rounding), though
+    // the path goes on smoothly to delta = 0.
+    let s = Scratch::new("shell-fig38-unloading");
+    s.run_pipeline(
+        "stages:
+  - name: rough
+    kind: fem.indent
+    params: {shell: {R: 25, h: 0.9, imperfection: {apex_force: 0.05}}, delta_max: 0.35, steps: 35, stability: tangent, gamma: 0.00011, mu: 0.75}
+  - name: moderate
+    kind: fem.indent
+    params: {shell: {R: 25, h: 0.9, imperfection: {apex_force: 0.05}}, delta_max: 0.35, steps: 35, stability: tangent, gamma: 0.000145, mu: 1}
+",
+    );
+    for stage in ["rough", "moderate"] {
+        let t = s.table(stage);
+        let (leg, delta, converged) = (column(&t, "leg_id"), column(&t, "delta_over_R"), column(&t, "converged"));
+        assert_eq!(column(&t, "complete")[0], 1.0, "{stage}: the cycle is incomplete");
+        let unloading: Vec<usize> = (0..leg.len()).filter(|&i| leg[i] == 1.0).collect();
+        assert!(unloading.iter().all(|&i| converged[i] == 1.0), "{stage}: an unloading state did not converge");
+        // Down through every loading displacement, 0.35 to 0 in steps of 0.01.
+        assert!(unloading.len() >= 36, "{stage}: {} unloading states", unloading.len());
+        assert!(delta[*unloading.last().unwrap()].abs() < 1e-12, "{stage}: the unloading ends above delta = 0");
+    }
+}

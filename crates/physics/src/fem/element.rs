@@ -47,18 +47,19 @@ pub fn shape(xi: f64, eta: f64) -> ([f64; 8], [[f64; 2]; 8]) {
 pub const GAUSS: [(f64, f64); 3] =
     [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
 
-/// A Gauss point in the reference configuration: shape values, their R and Z derivatives,
-/// the radius and the weight 2 pi R det(J) w.
+/// A Gauss point in the reference configuration: the shape functions' R and Z derivatives,
+/// the hoop terms N/R and the weight 2 pi R det(J) w.
 #[derive(Clone, Copy)]
 struct Point {
-    n: [f64; 8],
     dn: [[f64; 2]; 8],
-    radius: f64,
+    /// N_a / R, what u_r of node a adds to the hoop stretch F_tt: divided once here (three
+    /// divisions per node and Gauss point had been a third of an element's tangent, perf).
+    hoop: [f64; 8],
     dv: f64,
 }
 
-/// The reference geometry of one element at its 3 x 3 Gauss points (shape values and
-/// derivatives, radius, weight): it depends only on the mesh, so a model computes it once
+/// The reference geometry of one element at its 3 x 3 Gauss points (shape derivatives,
+/// hoop terms, weight): it depends only on the mesh, so a model computes it once
 /// instead of at every assembly.
 #[derive(Clone, Copy)]
 pub struct Geometry([Point; 9]);
@@ -66,7 +67,7 @@ pub struct Geometry([Point; 9]);
 impl Geometry {
     /// Panics on an element with a non-positive Jacobian (a broken mesh).
     pub fn new(x: &[[f64; 2]; 8]) -> Geometry {
-        let mut out = [Point { n: [0.0; 8], dn: [[0.0; 2]; 8], radius: 0.0, dv: 0.0 }; 9];
+        let mut out = [Point { dn: [[0.0; 2]; 8], hoop: [0.0; 8], dv: 0.0 }; 9];
         for (i, &(xi, wx)) in GAUSS.iter().enumerate() {
             for (k, &(eta, wy)) in GAUSS.iter().enumerate() {
                 let (n, d) = shape(xi, eta);
@@ -90,7 +91,8 @@ impl Geometry {
                         dn[a][c] = d[a][0] * inv[0][c] + d[a][1] * inv[1][c];
                     }
                 }
-                out[3 * i + k] = Point { n, dn, radius, dv: 2.0 * std::f64::consts::PI * radius * det * wx * wy };
+                let hoop = std::array::from_fn(|a| n[a] / radius);
+                out[3 * i + k] = Point { dn, hoop, dv: 2.0 * std::f64::consts::PI * radius * det * wx * wy };
             }
         }
         Geometry(out)
@@ -106,7 +108,7 @@ fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
         f[1] += p.dn[a][1] * u[a][0];
         f[2] += p.dn[a][0] * u[a][1];
         f[3] += p.dn[a][1] * u[a][1];
-        f[4] += p.n[a] * u[a][0] / p.radius;
+        f[4] += p.hoop[a] * u[a][0];
     }
     f
 }
@@ -114,7 +116,7 @@ fn deformation(p: &Point, u: &[[f64; 2]; 8]) -> [f64; 5] {
 /// Node b's internal force (r, z) at a Gauss point with stress p (one term of Int G^T P dV0).
 #[inline(always)]
 fn nodal_force(pt: &Point, b: usize, p: &[f64; 5]) -> [f64; 2] {
-    let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], pt.n[b] / pt.radius);
+    let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], pt.hoop[b]);
     [(dr * p[0] + dz * p[1] + t * p[4]) * pt.dv, (dr * p[2] + dz * p[3]) * pt.dv]
 }
 
@@ -176,31 +178,49 @@ vectorized_fn! {
 #[allow(clippy::type_complexity)]
 fn tangent_kernel(geometry: &Geometry, u: &[[f64; 2]; 8], m: Material) -> Option<([f64; 16], [[f64; 16]; 16])> {
     let mut fint = [0.0; 16];
-    let mut k = [[0.0; 16]; 16];
+    // The tangent by blocks of node pairs (b, c): rr[b][c] couples u_r of b with u_r of c,
+    // rz u_r with u_z, zr u_z with u_r, zz u_z with u_z; interleaved into K at the end. In
+    // this layout the loops over c run over contiguous memory and vectorise.
+    let (mut rr, mut rz, mut zr, mut zz) = ([[0.0; 8]; 8], [[0.0; 8]; 8], [[0.0; 8]; 8], [[0.0; 8]; 8]);
     for pt in &geometry.0 {
         let f = deformation(pt, u);
         let (p, a) = m.stress(&f)?;
-        let hoop: [f64; 8] = std::array::from_fn(|b| pt.n[b] / pt.radius);
-        // ag[q] = (A G)_{., q} dV0, the 5 components of column q.
-        let mut ag = [[0.0; 5]; 16];
-        for b in 0..8 {
-            let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], hoop[b]);
-            for c in 0..5 {
-                ag[2 * b][c] = (a[c][0] * dr + a[c][1] * dz + a[c][4] * t) * pt.dv;
-                ag[2 * b + 1][c] = (a[c][2] * dr + a[c][3] * dz) * pt.dv;
+        let dr: [f64; 8] = std::array::from_fn(|b| pt.dn[b][0]);
+        let dz: [f64; 8] = std::array::from_fn(|b| pt.dn[b][1]);
+        let hoop = pt.hoop;
+        // (A G)_{c, q} dV0 for the u_r columns (ar[c][b]) and the u_z ones (az[c][b]).
+        let mut ar = [[0.0; 8]; 5];
+        let mut az = [[0.0; 8]; 5];
+        for c in 0..5 {
+            for b in 0..8 {
+                ar[c][b] = (a[c][0] * dr[b] + a[c][1] * dz[b] + a[c][4] * hoop[b]) * pt.dv;
+                az[c][b] = (a[c][2] * dr[b] + a[c][3] * dz[b]) * pt.dv;
             }
         }
         for b in 0..8 {
-            let (dr, dz, t) = (pt.dn[b][0], pt.dn[b][1], hoop[b]);
             let [fr, fz] = nodal_force(pt, b, &p);
             fint[2 * b] += fr;
             fint[2 * b + 1] += fz;
-            for r in 2 * b..16 {
-                let col = &ag[r];
-                k[2 * b][r] += dr * col[0] + dz * col[1] + t * col[4];
-                if r > 2 * b {
-                    k[2 * b + 1][r] += dr * col[2] + dz * col[3];
-                }
+            let (gr, gz, t) = (dr[b], dz[b], hoop[b]);
+            // Every pair, in whole vectors (a triangular range needs masked loads and
+            // stores, slower than the products they save); the upper triangle of K is read
+            // from them below and mirrored.
+            for c in 0..8 {
+                rr[b][c] += gr * ar[0][c] + gz * ar[1][c] + t * ar[4][c];
+                rz[b][c] += gr * az[0][c] + gz * az[1][c] + t * az[4][c];
+                zr[b][c] += gr * ar[2][c] + gz * ar[3][c];
+                zz[b][c] += gr * az[2][c] + gz * az[3][c];
+            }
+        }
+    }
+    let mut k = [[0.0; 16]; 16];
+    for b in 0..8 {
+        for c in b..8 {
+            k[2 * b][2 * c] = rr[b][c];
+            k[2 * b][2 * c + 1] = rz[b][c];
+            k[2 * b + 1][2 * c + 1] = zz[b][c];
+            if c > b {
+                k[2 * b + 1][2 * c] = zr[b][c];
             }
         }
     }

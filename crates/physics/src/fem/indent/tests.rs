@@ -150,11 +150,12 @@ fn the_nonmonotone_search_converges_where_the_monotone_one_crawls() {
     let msg =
         format!("monotone: {} iterations, {} failed; nonmonotone: {}, {} failed", mono.0, mono.1, nonmono.0, nonmono.1);
     println!("{msg}");
-    // Measured: the monotone search fails a step (290 iterations up to it), the
-    // nonmonotone one walks all sixteen (259 iterations).
+    // Measured: the nonmonotone search walks all sixteen steps in 253 iterations; the
+    // monotone one crawls through them in 340, or fails a step on the way (the last
+    // bits of the factorisations decide which).
     assert!(nonmono.1 == 0 && (nonmono.2.delta - 9.0 * h).abs() < 1e-9, "{msg}");
     assert!(nonmono.0 <= 16 * 20, "{msg}");
-    assert!(mono.1 == 1, "the monotone search no longer fails here: {msg}");
+    assert!(mono.1 == 1 || mono.0 as f64 >= 1.2 * nonmono.0 as f64, "the monotone search no longer crawls here: {msg}");
 }
 
 fn newton_norms(model: &Model, plate: &Plate, delta: f64, u0: &[f64], stick: &[f64], n: usize) -> Vec<f64> {

@@ -84,7 +84,9 @@ type Assembly = (Vec<f64>, Vec<f64>, Stiffness);
 /// element. The interface terms lie inside it (contact and friction couple the two dofs of
 /// a node, adhesion the three outer nodes of an element's edge), so it is the same for every
 /// tangent of a model; it is built once, with each element's 16 x 16 block mapped to its
-/// value slots, and its band's half-width is found.
+/// value slots, and its band's half-width is found. The values are stored row by row (the
+/// pattern is symmetric, so `symbolic`'s column lists are the rows' too): the band LU's
+/// rows are then copied from contiguous values.
 struct Pattern {
     /// Free numbering of the dofs (usize::MAX for fixed ones) and the number of free dofs.
     index: Vec<usize>,
@@ -148,17 +150,17 @@ impl Pattern {
                 })
             })
             .collect();
-        let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
-        // Entry (i, j) of column j has its transpose at row j of column i.
-        let mut transposed = Vec::with_capacity(row_idx.len());
-        for j in 0..m {
-            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+        let (row_ptr, col_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+        // Entry (i, j) of row i has its transpose at column i of row j.
+        let mut transposed = Vec::with_capacity(col_idx.len());
+        for i in 0..m {
+            for &j in &col_idx[row_ptr[i]..row_ptr[i + 1]] {
                 transposed.push(at(j, i));
             }
         }
         let diagonal = (0..m).map(|j| at(j, j)).collect();
         let half_band =
-            (0..m).flat_map(|j| row_idx[col_ptr[j]..col_ptr[j + 1]].iter().map(move |&i| i.abs_diff(j))).max();
+            (0..m).flat_map(|i| col_idx[row_ptr[i]..row_ptr[i + 1]].iter().map(move |&j| j.abs_diff(i))).max();
         Pattern { index, symbolic, slots, transposed, diagonal, half_band: half_band.unwrap_or(0) }
     }
 
@@ -178,11 +180,12 @@ impl Pattern {
     }
 }
 
-/// The value slot of entry (row, col) of a pattern (rows sorted in each column), if present.
+/// The value slot of entry (row, col) of a symmetric pattern whose values are stored row by
+/// row (each row's columns sorted), if present.
 fn position(pattern: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> Option<usize> {
-    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-    let rows = &row_idx[col_ptr[col]..col_ptr[col + 1]];
-    rows.binary_search(&row).ok().map(|k| col_ptr[col] + k)
+    let (row_ptr, col_idx) = (pattern.col_ptr(), pattern.row_idx());
+    let cols = &col_idx[row_ptr[row]..row_ptr[row + 1]];
+    cols.binary_search(&col).ok().map(|k| row_ptr[row] + k)
 }
 
 /// A tangent matrix of a model: the values of its free-free block on the model's pattern
@@ -212,12 +215,14 @@ impl Stiffness {
         let w = kl + 1;
         let mut u = vec![0.0; n * w];
         let mut end: Vec<usize> = (0..n).collect();
-        let (col_ptr, row_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
+        let (row_ptr, col_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
+        // Column j's entries (i, j) below the diagonal sit at the transposed slots of row
+        // j's (j, i).
         for j in 0..n {
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let i = row_idx[k];
+            for k in row_ptr[j]..row_ptr[j + 1] {
+                let i = col_idx[k];
                 if i >= j {
-                    u[j * w + i - j] = self.values[k];
+                    u[j * w + i - j] = self.values[p.transposed[k] as usize];
                     end[j] = end[j].max(i);
                 }
             }
@@ -229,12 +234,10 @@ impl Stiffness {
     fn band(&self) -> Band {
         let p = &self.pattern;
         let hb = p.half_band;
-        let (col_ptr, row_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
-        // Row i's entries (i, j) sit at the transposed slots of column i's (j, i) (the
-        // pattern is symmetric).
+        let (row_ptr, col_idx) = (p.symbolic.col_ptr(), p.symbolic.row_idx());
         Band::from_rows(p.n_free(), hb, hb, |i, w| {
-            for k in col_ptr[i]..col_ptr[i + 1] {
-                w[row_idx[k] + hb - i] = self.values[p.transposed[k] as usize];
+            for k in row_ptr[i]..row_ptr[i + 1] {
+                w[col_idx[k] + hb - i] = self.values[k];
             }
         })
     }
