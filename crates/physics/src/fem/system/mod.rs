@@ -12,7 +12,7 @@
 // Index loops over local dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{energy_of, forces_and_tangent_of, forces_of, Geometry};
+use super::element::{energy_of, forces_and_tangent_into, forces_of, ForcesAndTangent, Geometry};
 use super::material::{Law, Material};
 use super::mesh::ShellMesh;
 use crate::numerics::banded::{Band, BandCholesky, BandLu};
@@ -75,6 +75,9 @@ pub struct Model {
     /// and the next step's predictor assemble at the displacements of its last Newton
     /// evaluation again, and get the same result from here.
     last: std::sync::Mutex<Option<Assembly>>,
+    /// The elements' forces and tangents of an assembly, kept for the next one: each is
+    /// written whole, so the 1 MB need not be allocated and cleared every time.
+    blocks: std::sync::Mutex<Vec<ForcesAndTangent>>,
 }
 
 /// Displacements with their internal forces and tangent.
@@ -290,6 +293,7 @@ impl Model {
             pattern,
             lu_count: Default::default(),
             last: std::sync::Mutex::new(None),
+            blocks: Default::default(),
         }
     }
 
@@ -352,10 +356,14 @@ impl Model {
     ) -> Option<Vec<T>> {
         let mut out = vec![zero; self.mesh.elements.len()];
         let ok = out.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
-            let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-            local(geometry, &ue).map(|v| *out = v).is_some()
+            local(geometry, &self.element_displacements(u, el)).map(|v| *out = v).is_some()
         });
         ok.then_some(out)
+    }
+
+    /// The displacements of element `el`'s nodes.
+    fn element_displacements(&self, u: &[f64], el: &[usize; 8]) -> [[f64; 2]; 8] {
+        std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]])
     }
 
     /// Adds element `el`'s forces into the global vector.
@@ -366,12 +374,17 @@ impl Model {
     }
 
     fn assemble_anew(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
-        let local = self.per_element(u, ([0.0; 16], [[0.0; 16]; 16]), |geometry, ue| {
-            forces_and_tangent_of(geometry, ue, self.material)
-        })?;
+        let mut local = self.blocks.lock().unwrap_or_else(|e| e.into_inner());
+        local.resize(self.mesh.elements.len(), ([0.0; 16], [[0.0; 16]; 16]));
+        let written = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
+            forces_and_tangent_into(geometry, &self.element_displacements(u, el), self.material, out)
+        });
+        if !written {
+            return None;
+        }
         let mut f = vec![0.0; self.n_dofs()];
         let mut k = self.zero_stiffness();
-        for ((el, slots), (fe, ke)) in self.mesh.elements.iter().zip(&self.pattern.slots).zip(&local) {
+        for ((el, slots), (fe, ke)) in self.mesh.elements.iter().zip(&self.pattern.slots).zip(local.iter()) {
             Model::scatter_forces(&mut f, el, fe);
             for q in 0..16 {
                 for r in 0..16 {
@@ -407,10 +420,7 @@ impl Model {
             .elements
             .iter()
             .zip(&self.geometry)
-            .map(|(el, geometry)| {
-                let ue: [[f64; 2]; 8] = std::array::from_fn(|a| [u[2 * el[a]], u[2 * el[a] + 1]]);
-                energy_of(geometry, &ue, self.material)
-            })
+            .map(|(el, geometry)| energy_of(geometry, &self.element_displacements(u, el), self.material))
             .sum();
         Some(stored? - load)
     }
