@@ -110,7 +110,9 @@ impl Band {
     fn lu_kernel(mut self) -> Option<BandLu> {
         let (n, kl) = (self.n, self.kl);
         let mut pivots = vec![0; n];
-        let mut lower = vec![0.0; n * kl];
+        // Written in order, column by column (each column's kl entries, zeros past the last
+        // row): filled by pushes, not cleared first.
+        let mut lower = Vec::with_capacity(n * kl);
         let mut end = std::mem::take(&mut self.end);
         for k in 0..n {
             let last_row = (k + kl).min(n - 1);
@@ -145,7 +147,7 @@ impl Band {
                 // The multiplier goes to `lower` only: the band's entry (i, k) is not read
                 // again.
                 let l = self.values[self.at(i, k)] * reciprocal;
-                lower[k * kl + i - k - 1] = l;
+                lower.push(l);
                 if l != 0.0 && stop > start {
                     let from = self.at(i, k + 1);
                     let (head, tail) = self.values.split_at_mut(from);
@@ -156,6 +158,7 @@ impl Band {
                     end[i] = end[i].max(last_col);
                 }
             }
+            lower.resize((k + 1) * kl, 0.0);
         }
         Some(BandLu { band: self, pivots, lower, end })
     }
