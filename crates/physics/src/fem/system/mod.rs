@@ -346,19 +346,18 @@ impl Model {
     }
 
     /// `local` of every element at displacements `u`, computed in parallel, each written in
-    /// place (collecting them would copy the 2 kB tangent blocks around); None if any
-    /// element gives None (inverted).
-    fn per_element<T: Send + Copy>(
+    /// place into `out` (collecting them would copy the 2 kB tangent blocks around); false
+    /// if any element gives false (inverted).
+    fn per_element<T: Send>(
         &self,
         u: &[f64],
-        zero: T,
-        local: impl Fn(&Geometry, &[[f64; 2]; 8]) -> Option<T> + Sync,
-    ) -> Option<Vec<T>> {
-        let mut out = vec![zero; self.mesh.elements.len()];
-        let ok = out.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
-            local(geometry, &self.element_displacements(u, el)).map(|v| *out = v).is_some()
-        });
-        ok.then_some(out)
+        out: &mut [T],
+        local: impl Fn(&Geometry, &[[f64; 2]; 8], &mut T) -> bool + Sync,
+    ) -> bool {
+        out.par_iter_mut()
+            .zip(&self.mesh.elements)
+            .zip(&self.geometry)
+            .all(|((out, el), geometry)| local(geometry, &self.element_displacements(u, el), out))
     }
 
     /// The displacements of element `el`'s nodes.
@@ -376,10 +375,9 @@ impl Model {
     fn assemble_anew(&self, u: &[f64]) -> Option<(Vec<f64>, Stiffness)> {
         let mut local = self.blocks.lock().unwrap_or_else(|e| e.into_inner());
         local.resize(self.mesh.elements.len(), ([0.0; 16], [[0.0; 16]; 16]));
-        let written = local.par_iter_mut().zip(&self.mesh.elements).zip(&self.geometry).all(|((out, el), geometry)| {
-            forces_and_tangent_into(geometry, &self.element_displacements(u, el), self.material, out)
-        });
-        if !written {
+        if !self
+            .per_element(u, &mut local, |geometry, ue, out| forces_and_tangent_into(geometry, ue, self.material, out))
+        {
             return None;
         }
         let mut f = vec![0.0; self.n_dofs()];
@@ -402,7 +400,13 @@ impl Model {
     /// The internal forces alone (bitwise those of `assemble`), or None if an element is
     /// inverted: a line search's trial steps, most of them rejected, need no tangent.
     pub fn internal_forces(&self, u: &[f64]) -> Option<Vec<f64>> {
-        let local = self.per_element(u, [0.0; 16], |geometry, ue| forces_of(geometry, ue, self.material))?;
+        let mut local = vec![[0.0; 16]; self.mesh.elements.len()];
+        let forces = |geometry: &Geometry, ue: &[[f64; 2]; 8], out: &mut [f64; 16]| {
+            forces_of(geometry, ue, self.material).map(|f| *out = f).is_some()
+        };
+        if !self.per_element(u, &mut local, forces) {
+            return None;
+        }
         let mut f = vec![0.0; self.n_dofs()];
         for (el, fe) in self.mesh.elements.iter().zip(&local) {
             Model::scatter_forces(&mut f, el, fe);
