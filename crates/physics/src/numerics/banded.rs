@@ -47,10 +47,13 @@ impl Band {
     /// touched a cache line per entry (9 % of a frictional shell point, perf).
     pub fn from_rows(n: usize, kl: usize, ku: usize, mut row: impl FnMut(usize, &mut [f64])) -> Band {
         let width = 2 * kl + ku + 1;
-        let mut values = vec![0.0; n * width];
+        // Each row cleared just before it is written (one pass over the band, not a clear of
+        // the whole band and then a second pass).
+        let mut values = Vec::with_capacity(n * width);
         let mut end = Vec::with_capacity(n);
-        for (i, w) in values.chunks_exact_mut(width).enumerate() {
-            let w = &mut w[..kl + ku + 1];
+        for i in 0..n {
+            values.resize((i + 1) * width, 0.0);
+            let w = &mut values[i * width..i * width + kl + ku + 1];
             row(i, w);
             end.push((kl..w.len()).rev().find(|&c| w[c] != 0.0).map_or(i, |c| i + c - kl));
         }
