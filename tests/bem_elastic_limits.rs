@@ -65,7 +65,7 @@ fn pull_off_at(lambda: f64, k: f64, v0: f64, n: Option<usize>) -> f64 {
 
 #[test]
 fn pull_off_tends_to_the_jkr_line_contact_as_lambda_grows() {
-    // Measured at V0 = 1e-6: -1.6353 (lambda 1), -1.7275 (lambda 3), -1.7359 (5), -1.7421 (10);
+    // Measured at V0 = 1e-6: -1.6352 (lambda 1), -1.7275 (lambda 3), -1.7359 (5), -1.7421 (10);
     // JKR -1.74367. Maugis-Dugdale line contact: -1.7245, -1.7433.
     let jkr = jkr_pull_off();
     let (w1, w3) = (pull_off_at(1.0, 0.1, 1e-6, None), pull_off_at(3.0, 0.1, 1e-6, None));
@@ -165,10 +165,9 @@ fn pull_off_at_k_0_001_tends_to_its_relaxed_and_instantaneous_limits() {
 #[test]
 fn the_pull_off_error_estimate_covers_the_domain_and_the_mesh() {
     // bem.pulloff at lambda = 1, k = 0.1, V = 1e-6 with the default rel_tol (1e-3: L = 9.8,
-    // n = 356) against rel_tol 1e-5 (L = 24.6, n = 892). Measured: -1.635280 against
-    // -1.635362, an error of 8.2e-5, mostly the truncated Lennard-Jones tail (1e-4 of load
-    // beyond L); the mesh's Richardson share alone was 1.2e-5, 6.6 times short. Reported now
-    // 2.4e-4.
+    // n = 356) against rel_tol 1e-5 (L = 24.6, n = 1784). Measured: -1.635247 against
+    // -1.635372, an error of 1.25e-4, mostly the truncated Lennard-Jones tail (1e-4 of load
+    // beyond L). Reported: 3.4e-4.
     let s = Scratch::new("pulloff-estimate");
     s.run_pipeline(
         "stages:

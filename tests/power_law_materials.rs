@@ -42,18 +42,19 @@ fn at_low_speed_the_retardation_times_superpose() {
     let f = mu_star(&spectral, mesh);
     let superposed: f64 = terms.iter().map(|&(w, t)| w * sls(v0 * t)).sum();
     assert!((f / superposed - 1.0).abs() < 1e-5, "{f} vs {superposed}");
-    // The mean retardation time alone (<t> = 1.005) is not enough: the SLS friction is not
-    // exactly linear in V0 (local slope 0.994, a V ln V term); measured gap -0.72%.
+    // The SLS friction is linear in V0 there, so the mean retardation time (<t> = 1.005)
+    // alone gives it too: measured gap -7.8e-6. (With piecewise-constant pressure the gap
+    // had been -0.72 %, an apparent V ln V term that was the strips' first-order error on
+    // elements 56 creep lengths long: docs/bem.md, "Discretisation".)
     let mean_time = sls(v0 * 1.005);
-    assert!(f / mean_time - 1.0 < -3e-3, "{f} vs {mean_time}");
+    assert!((f / mean_time - 1.0).abs() < 1e-4, "{f} vs {mean_time}");
 }
 
 #[test]
 fn at_low_speed_a_power_law_acts_through_its_mean_retardation_time() {
-    // Hence, to within that non-linearity, F(power law, V0) ~ F(SLS, <t> V0) with
-    // <t> = ((1-s)/(2-s)) (1 - t1^(2-s))/(1 - t1^(1-s)) on (t1, 1). Measured gap: -0.21%,
-    // -0.24%, -0.20% at V0 = 1e-3, 1e-4, 1e-5 for s = 0, -0.82% for s = 0.75, matching
-    // (slope - 1)(<t ln t>/<t> - ln <t>) with slope - 1 = -0.010.
+    // Hence F(power law, V0) = F(SLS, <t> V0) with <t> = ((1-s)/(2-s)) (1 - t1^(2-s))/
+    // (1 - t1^(1-s)) on (t1, 1) for the continuous spectrum, the discrete one's own <t>
+    // here. Measured gap at V0 = 1e-4: -6.3e-9 (s = 0), -8.3e-9 (s = 0.75).
     let (lambda, w, k, t1) = (1.0, 0.1, 0.001, 1e-6);
     let v0 = 1e-4;
     let base = Params::sls(lambda, w, k, v0);
@@ -67,7 +68,7 @@ fn at_low_speed_a_power_law_acts_through_its_mean_retardation_time() {
         assert!((mean / exact - 1.0).abs() < 5e-3, "s={s}: discrete <t> {mean} vs {exact}");
         let pl = mu_star(&Params { spectrum, ..base.clone() }, mesh);
         let sls = mu_star(&Params::sls(lambda, w, k, v0 * mean), mesh);
-        assert!((pl / sls - 1.0).abs() < 1e-2, "s={s}: {pl} vs SLS at <t> V0: {sls}");
+        assert!((pl / sls - 1.0).abs() < 1e-5, "s={s}: {pl} vs SLS at <t> V0: {sls}");
         // And far from the SLS at the same V0 (the test can fail).
         let same = mu_star(&base, mesh);
         assert!(pl / same < 0.6, "s={s}: {pl} vs SLS at V0: {same}");

@@ -48,7 +48,7 @@ pub struct BemPullOff;
 
 impl Kind for BemPullOff {
     const NAME: &'static str = "bem.pulloff";
-    const VERSION: u32 = 14;
+    const VERSION: u32 = 15;
     const DOC: &'static str =
         "Chapters 4-5 BEM: pull-off load (minimum W on the equilibrium branch, walked by pseudo-arclength in approach and load) at speed V";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "k", "V"];

@@ -29,8 +29,12 @@
 //! one-time terms, each at its own speed V_j = V t_j:
 //!   K(X) = U_el(X) + (1 - k) Sum_j w_j V_j [g((X+A)/V_j) - g((X-A)/V_j)].
 //! One term at t = 1 is the SLS kernel above, term for term.
+//!
+//! The solver's meshes (`MeshKernel`) take the pressure linear between nodes: the
+//! displacement of a hat of pressure is the strip averaged over one element, a second
+//! difference of the kernel's second antiderivative (`expint::g1` for the creep part).
 
-use super::expint::g;
+use super::expint::{g, g1};
 use crate::rheology::Spectrum;
 
 fn xlogx(t: f64) -> f64 {
@@ -76,33 +80,61 @@ pub fn strip_spectrum(x: f64, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> f6
 }
 
 /// Influence coefficients on a uniform grid of n elements of width 2a: c[m + n - 1] is the
-/// displacement at element i from unit pressure on element j, m = i - j. The matrix
-/// G_ij = c[i - j + n - 1] is Toeplitz.
+/// displacement at node i from unit nodal pressure at node j, m = i - j (`MeshKernel`). The
+/// matrix G_ij = c[i - j + n - 1] is Toeplitz.
 pub fn toeplitz_coefficients(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> Vec<f64> {
     MeshKernel::new(n, a, v, k, spectrum).nodes
 }
 
-/// The strip's displacement as a difference, strip(x) = Q(x + a) - Q(x - a) + 2a, with
-///   Q(s) = -s ln|s| + (1 - k) Sum_j w_j V_j g(s / V_j)
-/// (`strip_spectrum`; one term w = 1 at V for the SLS).
-fn q(s: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
-    let creep = if v == 0.0 || k == 1.0 {
-        0.0
-    } else {
-        spectrum.terms().iter().map(|&(w, t)| if v * t == 0.0 { 0.0 } else { w * v * t * g(s / (v * t)) }).sum()
-    };
-    -xlogx(s) + (1.0 - k) * creep
+/// The second antiderivative of the point-load kernel, F2'' = K, with (per unit load,
+/// without 2 lambda/pi, up to terms linear in s, which no coefficient sees)
+///   K(s) = -ln|s| + (1 - k) Sum_j w_j exp(-s/V_j) Ei(s/V_j)
+/// (the strip is strip(x) = F1(x + a) - F1(x - a), F1' = K):
+///   F2(s) = -(s^2/2) ln|s| + (3/4) s^2 + (1 - k) Sum_j w_j V_j^2 G1(s/V_j)
+/// (`expint::g1`).
+fn f2(s: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
+    let elastic = if s == 0.0 { 0.0 } else { -0.5 * s * s * s.abs().ln() + 0.75 * s * s };
+    if v == 0.0 || k == 1.0 {
+        return elastic;
+    }
+    let creep: f64 = spectrum
+        .terms()
+        .iter()
+        .map(|&(w, t)| {
+            let vt = v * t;
+            if vt == 0.0 {
+                0.0
+            } else {
+                w * vt * vt * g1(s / vt)
+            }
+        })
+        .sum();
+    elastic + (1.0 - k) * creep
 }
 
-/// Every influence coefficient of a uniform mesh of n elements of half-width a: the
-/// node-to-node Toeplitz coefficients (`toeplitz_coefficients`) and the node-to-edge ones
-/// (edge e = X_0 - a + 2a e from element m: `edges[e - m + n - 1]`). Both are differences
-/// of `q` at the element edges (odd multiples of a) and at the nodes (even ones), each
-/// evaluated once: 4n + 1 evaluations of the exponential integrals per retardation time
-/// instead of two per coefficient (8n - 2). With the kernel built once per lambda
-/// continuation (`solver::Operator::scaled`): the exponential integrals had been most of
-/// the time of a power-law point (docs/tuning.md). The coefficients agree with
-/// `strip_spectrum` to rounding (tested), but not bitwise.
+/// The displacement at offset `x` from a hat of pressure: 1 at its node, falling linearly
+/// to 0 at the neighbouring nodes +-2a (`strip_spectrum` averaged over [x - a, x + a]):
+///   hat(x) = [F2(x + 2a) - 2 F2(x) + F2(x - 2a)] / (2a).
+pub fn hat_spectrum(x: f64, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
+    let h = 2.0 * a;
+    (f2(x + h, v, k, spectrum) - 2.0 * f2(x, v, k, spectrum) + f2(x - h, v, k, spectrum)) / h
+}
+
+/// Every influence coefficient of a uniform mesh of n elements of half-width a, the
+/// pressure being the piecewise-linear interpolant of its values at the element centres
+/// (the nodes): a hat per node (`hat_spectrum`). The node-to-node Toeplitz coefficients
+/// (`toeplitz_coefficients`) and the node-to-edge ones (edge e = X_0 - a + 2a e from node
+/// m: `edges[e - m + n - 1]`) are second differences of `f2` at the multiples of a, each
+/// evaluated once: 4n + 3 evaluations of the exponential integrals per retardation time.
+/// With the kernel built once per lambda continuation (`solver::Operator::scaled`): the
+/// exponential integrals had been most of the time of a power-law point (docs/tuning.md).
+///
+/// Why hats and not the strips of piecewise-constant pressure: the creep part of K is
+/// log-singular on the scale V = v tau/beta; where the elements are longer than V, the
+/// strips' pressure steps between elements give the creep displacement, and with it the
+/// friction, an error of first order in the element size (2.3 % at 400 elements for any
+/// V0 below 1e-4 at lambda = 1, W = 1, k = 0.1). With hats the error is of second order at
+/// every speed (docs/bem.md, "Discretisation").
 pub struct MeshKernel {
     pub nodes: Vec<f64>,
     pub edges: Vec<f64>,
@@ -110,12 +142,16 @@ pub struct MeshKernel {
 
 impl MeshKernel {
     pub fn new(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> MeshKernel {
-        let nf = n as f64;
-        // At a (2i - 2n + 1), i = 0 .. 2n - 1, and at 2a (p - n), p = 0 ..= 2n.
-        let odd: Vec<f64> = (0..2 * n).map(|i| q(a * (2.0 * (i as f64 - nf) + 1.0), v, k, spectrum)).collect();
-        let even: Vec<f64> = (0..=2 * n).map(|p| q(2.0 * a * (p as f64 - nf), v, k, spectrum)).collect();
-        let diff = |t: &[f64]| t.windows(2).map(|w| w[1] - w[0] + 2.0 * a).collect::<Vec<f64>>();
-        MeshKernel { nodes: diff(&odd), edges: diff(&even) }
+        // F2 at t a, t = -(2n + 1) ..= 2n + 1.
+        let top = 2 * n as i64 + 1;
+        let values: Vec<f64> = (-top..=top).map(|t| f2(a * t as f64, v, k, spectrum)).collect();
+        let at = |t: i64| values[(t + top) as usize];
+        let hat = |t: i64| (at(t + 2) - 2.0 * at(t) + at(t - 2)) / (2.0 * a);
+        let first = n as i64 - 1;
+        // Node i from node j at 2a (i - j); edge e from node m at a (2 (e - m) - 1).
+        let nodes = (0..2 * n as i64 - 1).map(|d| hat(2 * (d - first))).collect();
+        let edges = (0..2 * n as i64).map(|d| hat(2 * (d - first) - 1)).collect();
+        MeshKernel { nodes, edges }
     }
 }
 
@@ -281,26 +317,52 @@ mod tests {
         }
     }
 
+    /// A hat by quadrature: the strip averaged over [x - a, x + a] (a hat is a strip
+    /// convolved with a strip), independent of `f2` and `expint::g1`.
+    fn hat_by_quadrature(x: f64, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
+        let f = |t: f64| strip_spectrum(x - t, a, v, k, spectrum);
+        let mut breaks = vec![-a, a];
+        // strip(x - t) has logarithmic kinks at x - t = +-a.
+        breaks.extend([x - a, x + a].into_iter().filter(|t| t.abs() < a));
+        breaks.sort_by(f64::total_cmp);
+        integrate_panels(&f, &breaks, 1e-12).0 / (2.0 * a)
+    }
+
     #[test]
-    fn the_mesh_kernel_is_the_strip_at_every_offset() {
-        // Shared evaluations at the element edges and nodes give every coefficient of the
-        // strip itself, nodes and edges, SLS and a spectrum, elastic and moving.
+    fn the_mesh_kernel_is_the_hat_at_every_offset() {
+        // Second differences of F2 at shared points give every coefficient of the hat,
+        // nodes and edges, SLS and a spectrum, elastic and moving (slow, where the creep
+        // kernel varies within an element, and fast).
         let (n, a) = (37, 0.03);
         for spectrum in [Spectrum::sls(), Spectrum::power_law(0.5, 1e-4, 2).unwrap()] {
             for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (0.7, 0.01), (30.0, 0.5), (2.0, 1.0)] {
                 let kern = MeshKernel::new(n, a, v, k, &spectrum);
                 assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
                 let scale = elastic_strip(0.0, a);
-                for (idx, c) in kern.nodes.iter().enumerate() {
-                    let x = 2.0 * a * (idx as f64 - (n as f64 - 1.0));
-                    let d = (c - strip_spectrum(x, a, v, k, &spectrum)).abs();
-                    assert!(d < 1e-13 * scale, "node {idx} v={v} k={k}: {d:e}");
+                let offsets =
+                    |len: usize, shift: f64| (0..len).map(move |i| 2.0 * a * (i as f64 - (n as f64 - 1.0)) - shift);
+                for (coefficients, shift) in [(&kern.nodes, 0.0), (&kern.edges, a)] {
+                    for (idx, (c, x)) in coefficients.iter().zip(offsets(coefficients.len(), shift)).enumerate() {
+                        let d = (c - hat_by_quadrature(x, a, v, k, &spectrum)).abs();
+                        assert!(d < 1e-10 * scale, "{idx} at {x} v={v} k={k}: {d:e}");
+                        let direct = hat_spectrum(x, a, v, k, &spectrum);
+                        assert!((c - direct).abs() < 1e-12 * scale, "{idx} v={v} k={k}");
+                    }
                 }
-                for (idx, c) in kern.edges.iter().enumerate() {
-                    let x = 2.0 * a * (idx as f64 - (n as f64 - 1.0)) - a;
-                    let d = (c - strip_spectrum(x, a, v, k, &spectrum)).abs();
-                    assert!(d < 1e-13 * scale, "edge {idx} v={v} k={k}: {d:e}");
-                }
+            }
+        }
+    }
+
+    #[test]
+    fn far_from_the_node_a_hat_is_the_strip_to_second_order() {
+        // A hat and a strip carry the same load; at distance x they differ by
+        // (a^2/3) strip''(x) ~ a^2/(3 x^2) strip-scale: the hats change the near field only.
+        let a = 0.01;
+        for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (1.0, 0.1)] {
+            for x in [0.5, 1.0, 3.0] {
+                let (hat, strip) = (hat_spectrum(x, a, v, k, &Spectrum::sls()), strip(x, a, v, k));
+                let bound = 2.0 * a * a * a / (x * x);
+                assert!((hat - strip).abs() < bound, "v={v} x={x}: {hat} {strip}");
             }
         }
     }

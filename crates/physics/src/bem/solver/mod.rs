@@ -6,8 +6,10 @@
 //! towards -X (trailing edge on the right). The speed enters as V0 = v tau/a0 with
 //! a0/beta = 2 sqrt(W/pi) (ERRATA 4), so V = v tau/beta = 2 V0 sqrt(W/pi) (Eq. 4.18).
 //!
-//! Discretisation: n elements of width 2A on [-L, L], uniform pressure on each (Eq. 4.12:
-//! U = (2 lambda/pi) G P, G Toeplitz). Unknowns: the gaps H_i and the approach Delta.
+//! Discretisation: n elements of width 2A on [-L, L] with their centres X_i as nodes, the
+//! pressure linear between the nodes (a hat per node: `kernel::MeshKernel`; Eq. 4.12 with
+//! hats instead of the thesis' uniform strips: U = (2 lambda/pi) G P, G Toeplitz, second
+//! order in A at every speed). Unknowns: the gaps H_i and the approach Delta.
 //! Equations: H_i + Delta - X_i^2/2 - U_i(P(H)) = 0 (Eq. 4.7) and lambda Int P dX = W.
 //! Newton-Krylov: products with G by FFT (`numerics::toeplitz`), GMRES preconditioned by a
 //! dense LU (faer) of the near-contact block (`ActiveLu`), and a backtracking line search
@@ -16,9 +18,9 @@
 //!
 //! Friction (Eq. 4.16 with the prefactor of ERRATA 3, sign for sliding towards -X):
 //!   mu* = (sqrt(pi)/2) (lambda / W^(3/2)) Int P dU/dX dX,
-//! evaluated exactly for piecewise-constant pressure as sum_j P_j [U(X_j + A) - U(X_j - A)],
-//! with U at the element edges from the same kernel. mu_adh and mu_comp are the parts
-//! from tensile and compressive elements.
+//! evaluated as sum_j P_j [U(X_j + A) - U(X_j - A)] (the midpoint rule of Int P dU), with
+//! U at the element edges from the same kernel. mu_adh and mu_comp are the parts from
+//! tensile and compressive nodes.
 //!
 //! One file per concern: `params` (parameters, domain and mesh choice), `system` (the
 //! operator and the residual), `precondition`, `newton`, `continuation`, `solution` (the

@@ -18,8 +18,8 @@ use crate::numerics::extrapolation;
 /// domain): without them the actual error of mu* was 0.4-1.45 times the estimate (the
 /// largest at lambda = 3, V0 = 0.1, where the mesh sequence is not yet asymptotic at
 /// rel_tol 3e-3); before the domain's share was counted, up to 7 times on the defaults and
-/// 60-290 times on fixed meshes. The refinement itself still stops on the bare Richardson
-/// share against rel_tol.
+/// 60-290 times on fixed meshes. The refinement itself stops on the bare shares against
+/// rel_tol (`refine_to`).
 pub const MESH_SAFETY: f64 = 3.0;
 
 pub const DOMAIN_SAFETY: f64 = 2.0;
@@ -148,7 +148,8 @@ impl ErrorShares {
 
 /// Solves on `mesh` (by continuation on half its elements, then `refine`), then doubles
 /// the number of elements (same domain) until the Richardson estimate is at most
-/// `rel_tol` |mu*| or the next mesh would exceed `n_max`. Each refinement starts from
+/// `rel_tol` |mu*|, from two levels and then from three (`observed_estimate`), or the next
+/// mesh would exceed `n_max`. Each refinement starts from
 /// the previous solution and reuses it as the coarse one. `iterations` and
 /// `factorizations` of the result count the whole path (with the quarter-size solve the
 /// three-level estimate needs when the refinement stopped at its first two levels). The
@@ -214,34 +215,38 @@ fn refine_to(
         s
     };
     let mut fine = next(&coarse, mesh.n);
-    // The level before `coarse`, once the refinement has made one.
+    // The level before `coarse`, once the refinement has made one, or restricted from
+    // `coarse` when it stopped at its first two; the latter's Newton counts.
     let mut coarser: Option<Solution> = None;
+    let mut restricted = (0, 0);
     loop {
-        let estimate = richardson(&fine, &coarse);
+        let mu = fine.friction().mu_star.abs();
+        let two_level = richardson(&fine, &coarse);
         // Two levels in a row without a converged solution: refining will not rescue the
         // point (a load beyond pull-off walks to its fold on every mesh, and doubling to
         // n_max costs minutes: docs/tuning.md). It is reported as is.
         let hopeless = !fine.converged && !coarse.converged;
-        if hopeless || estimate <= rel_tol * fine.friction().mu_star.abs() || 2 * fine.mesh.n > n_max {
+        let capped = 2 * fine.mesh.n > n_max;
+        if hopeless || capped || two_level <= rel_tol * mu {
             // The domain's share, which refining the mesh does not change.
-            let domain = fine.friction().mu_star.abs() * domain_rel_error(params, mesh.half_length);
-            // The mesh's share from three levels: a quarter-size solve when the
-            // refinement stopped at its first two.
+            let domain = mu * domain_rel_error(params, mesh.half_length);
             if !three_levels {
+                return (fine, ErrorShares { mesh: two_level, domain });
+            }
+            if coarser.is_none() && !hopeless && fine.converged && coarse.mesh.n / 2 >= 8 {
+                let c = coarsen(&coarse, Mesh { n: coarse.mesh.n / 2, ..mesh });
+                restricted = (restricted.0 + c.iterations, restricted.1 + c.factorizations);
+                coarser = Some(c);
+            }
+            // The mesh's share from three levels. Where they show the sequence not yet
+            // asymptotic (the share above the tolerance that two levels met), the mesh is
+            // refined further while n_max allows.
+            let estimate = observed_estimate(&fine, &coarse, coarser.as_ref());
+            if hopeless || capped || estimate <= rel_tol * mu {
+                fine.iterations += restricted.0;
+                fine.factorizations += restricted.1;
                 return (fine, ErrorShares { mesh: estimate, domain });
             }
-            let coarser = match coarser {
-                Some(c) => Some(c),
-                None if !hopeless && fine.converged && coarse.mesh.n / 2 >= 8 => {
-                    let c = coarsen(&coarse, Mesh { n: coarse.mesh.n / 2, ..mesh });
-                    fine.iterations += c.iterations;
-                    fine.factorizations += c.factorizations;
-                    Some(c)
-                }
-                None => None,
-            };
-            let estimate = observed_estimate(&fine, &coarse, coarser.as_ref());
-            return (fine, ErrorShares { mesh: estimate, domain });
         }
         let n = 2 * fine.mesh.n;
         let finer = next(&fine, n);

@@ -1,6 +1,6 @@
 //! A solved point: pressures, gaps and displacements on the mesh, how Newton ended, and the
-//! friction (Eq. 4.16 with the prefactor of ERRATA 3) evaluated exactly for piecewise-
-//! constant pressure, split into its adhesive and compressive parts.
+//! friction (Eq. 4.16 with the prefactor of ERRATA 3, the midpoint rule of Int P dU over
+//! the elements), split into its adhesive and compressive parts.
 
 use super::params::{Mesh, Params};
 use crate::lennard_jones::ALPHA;
