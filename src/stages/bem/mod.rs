@@ -5,6 +5,7 @@
 pub mod pulloff;
 
 use super::material::with_material_fields;
+use crate::bem::kernel::Pressure;
 use crate::bem::solver::{self, Mesh, Params, Solution, Start};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
@@ -67,7 +68,21 @@ pub struct BemParams {
     /// Not with a fixed `n`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start: Option<String>,
+    /// How the pressure varies over the mesh: `linear` between the element centres (the
+    /// default: second order at every speed) or `uniform` on each element (the thesis'
+    /// strips, Eq. 4.12: first order where the elements are longer than the creep length,
+    /// as at low speed; docs/bem.md, "Discretisation").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<PressureParam>,
 }
+}
+
+/// `pressure` of `bem.sweep` and `bem.profile`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PressureParam {
+    Linear,
+    Uniform,
 }
 
 impl BemParams {
@@ -75,6 +90,10 @@ impl BemParams {
         Params {
             spectrum: self.material().spectrum(),
             newton_tol: self.newton_tol.unwrap_or(solver::TOLERANCE),
+            pressure: match self.pressure {
+                Some(PressureParam::Uniform) => Pressure::Uniform,
+                Some(PressureParam::Linear) | None => Pressure::Linear,
+            },
             ..Params::sls(self.lambda, self.W, self.k, self.V0)
         }
     }
@@ -464,6 +483,7 @@ impl MaximaParams {
             n_max: self.n_max,
             newton_tol: None,
             start: None,
+            pressure: None,
             s: None,
             tau_ratio: None,
             per_decade: None,

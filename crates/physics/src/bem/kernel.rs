@@ -79,11 +79,34 @@ pub fn strip_spectrum(x: f64, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> f6
     elastic_strip(x, a) + (1.0 - k) * creep
 }
 
+/// How the pressure varies over the mesh: `Linear` between nodes (a hat per node, the
+/// default: second order at every speed), or `Uniform` on each element (the thesis' strips,
+/// Eq. 4.12: first order where the elements are longer than the creep length; for
+/// comparisons with it, docs/bem.md, "Discretisation").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Pressure {
+    #[default]
+    Linear,
+    Uniform,
+}
+
 /// Influence coefficients on a uniform grid of n elements of width 2a: c[m + n - 1] is the
 /// displacement at node i from unit nodal pressure at node j, m = i - j (`MeshKernel`). The
 /// matrix G_ij = c[i - j + n - 1] is Toeplitz.
 pub fn toeplitz_coefficients(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> Vec<f64> {
-    MeshKernel::new(n, a, v, k, spectrum).nodes
+    MeshKernel::new(n, a, v, k, spectrum, Pressure::Linear).nodes
+}
+
+/// The strip's displacement as a difference, strip(x) = Q(x + a) - Q(x - a) + 2a, with
+///   Q(s) = -s ln|s| + (1 - k) Sum_j w_j V_j g(s / V_j)
+/// (`strip_spectrum`; one term w = 1 at V for the SLS).
+fn q(s: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 {
+    let creep = if v == 0.0 || k == 1.0 {
+        0.0
+    } else {
+        spectrum.terms().iter().map(|&(w, t)| if v * t == 0.0 { 0.0 } else { w * v * t * g(s / (v * t)) }).sum()
+    };
+    -xlogx(s) + (1.0 - k) * creep
 }
 
 /// The second antiderivative of the point-load kernel, F2'' = K, with (per unit load,
@@ -120,28 +143,37 @@ pub fn hat_spectrum(x: f64, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> f64 
     (f2(x + h, v, k, spectrum) - 2.0 * f2(x, v, k, spectrum) + f2(x - h, v, k, spectrum)) / h
 }
 
-/// Every influence coefficient of a uniform mesh of n elements of half-width a, the
-/// pressure being the piecewise-linear interpolant of its values at the element centres
-/// (the nodes): a hat per node (`hat_spectrum`). The node-to-node Toeplitz coefficients
-/// (`toeplitz_coefficients`) and the node-to-edge ones (edge e = X_0 - a + 2a e from node
-/// m: `edges[e - m + n - 1]`) are second differences of `f2` at the multiples of a, each
-/// evaluated once: 4n + 3 evaluations of the exponential integrals per retardation time.
-/// With the kernel built once per lambda continuation (`solver::Operator::scaled`): the
-/// exponential integrals had been most of the time of a power-law point (docs/tuning.md).
+/// Every influence coefficient of a uniform mesh of n elements of half-width a: the
+/// node-to-node Toeplitz coefficients (`toeplitz_coefficients`) and the node-to-edge ones
+/// (edge e = X_0 - a + 2a e from node m: `edges[e - m + n - 1]`), the nodes being the
+/// element centres. With `Pressure::Linear` the pressure is the piecewise-linear
+/// interpolant of its nodal values, a hat per node (`hat_spectrum`), and the coefficients
+/// are second differences of `f2` at the multiples of a (4n + 3 evaluations of the
+/// exponential integrals per retardation time); with `Pressure::Uniform` a strip per
+/// element (`strip_spectrum`), first differences of `q` (4n + 1). Each is evaluated once,
+/// not twice per coefficient, and the kernel is built once per lambda continuation
+/// (`solver::Operator::scaled`): the exponential integrals had been most of the time of a
+/// power-law point (docs/tuning.md).
 ///
-/// Why hats and not the strips of piecewise-constant pressure: the creep part of K is
-/// log-singular on the scale V = v tau/beta; where the elements are longer than V, the
-/// strips' pressure steps between elements give the creep displacement, and with it the
-/// friction, an error of first order in the element size (2.3 % at 400 elements for any
-/// V0 below 1e-4 at lambda = 1, W = 1, k = 0.1). With hats the error is of second order at
-/// every speed (docs/bem.md, "Discretisation").
+/// Why hats by default: the creep part of K is log-singular on the scale V = v tau/beta;
+/// where the elements are longer than V, the strips' pressure steps between elements give
+/// the creep displacement, and with it the friction, an error of first order in the element
+/// size (2.3 % at 400 elements for any V0 below 1e-4 at lambda = 1, W = 1, k = 0.1). With
+/// hats the error is of second order at every speed (docs/bem.md, "Discretisation").
 pub struct MeshKernel {
     pub nodes: Vec<f64>,
     pub edges: Vec<f64>,
 }
 
 impl MeshKernel {
-    pub fn new(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> MeshKernel {
+    pub fn new(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum, pressure: Pressure) -> MeshKernel {
+        match pressure {
+            Pressure::Linear => MeshKernel::hats(n, a, v, k, spectrum),
+            Pressure::Uniform => MeshKernel::strips(n, a, v, k, spectrum),
+        }
+    }
+
+    fn hats(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> MeshKernel {
         // F2 at t a, t = -(2n + 1) ..= 2n + 1.
         let top = 2 * n as i64 + 1;
         let values: Vec<f64> = (-top..=top).map(|t| f2(a * t as f64, v, k, spectrum)).collect();
@@ -152,6 +184,15 @@ impl MeshKernel {
         let nodes = (0..2 * n as i64 - 1).map(|d| hat(2 * (d - first))).collect();
         let edges = (0..2 * n as i64).map(|d| hat(2 * (d - first) - 1)).collect();
         MeshKernel { nodes, edges }
+    }
+
+    fn strips(n: usize, a: f64, v: f64, k: f64, spectrum: &Spectrum) -> MeshKernel {
+        let nf = n as f64;
+        // At a (2i - 2n + 1), i = 0 .. 2n - 1, and at 2a (p - n), p = 0 ..= 2n.
+        let odd: Vec<f64> = (0..2 * n).map(|i| q(a * (2.0 * (i as f64 - nf) + 1.0), v, k, spectrum)).collect();
+        let even: Vec<f64> = (0..=2 * n).map(|p| q(2.0 * a * (p as f64 - nf), v, k, spectrum)).collect();
+        let diff = |t: &[f64]| t.windows(2).map(|w| w[1] - w[0] + 2.0 * a).collect::<Vec<f64>>();
+        MeshKernel { nodes: diff(&odd), edges: diff(&even) }
     }
 }
 
@@ -336,7 +377,7 @@ mod tests {
         let (n, a) = (37, 0.03);
         for spectrum in [Spectrum::sls(), Spectrum::power_law(0.5, 1e-4, 2).unwrap()] {
             for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (0.7, 0.01), (30.0, 0.5), (2.0, 1.0)] {
-                let kern = MeshKernel::new(n, a, v, k, &spectrum);
+                let kern = MeshKernel::new(n, a, v, k, &spectrum, Pressure::Linear);
                 assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
                 let scale = elastic_strip(0.0, a);
                 let offsets =
@@ -347,6 +388,25 @@ mod tests {
                         assert!(d < 1e-10 * scale, "{idx} at {x} v={v} k={k}: {d:e}");
                         let direct = hat_spectrum(x, a, v, k, &spectrum);
                         assert!((c - direct).abs() < 1e-12 * scale, "{idx} v={v} k={k}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn with_uniform_pressure_the_mesh_kernel_is_the_strip_at_every_offset() {
+        let (n, a) = (37, 0.03);
+        for spectrum in [Spectrum::sls(), Spectrum::power_law(0.5, 1e-4, 2).unwrap()] {
+            for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (0.7, 0.01), (30.0, 0.5), (2.0, 1.0)] {
+                let kern = MeshKernel::new(n, a, v, k, &spectrum, Pressure::Uniform);
+                assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
+                let scale = elastic_strip(0.0, a);
+                for (coefficients, shift) in [(&kern.nodes, 0.0), (&kern.edges, a)] {
+                    for (idx, c) in coefficients.iter().enumerate() {
+                        let x = 2.0 * a * (idx as f64 - (n as f64 - 1.0)) - shift;
+                        let d = (c - strip_spectrum(x, a, v, k, &spectrum)).abs();
+                        assert!(d < 1e-13 * scale, "{idx} at {x} v={v} k={k}: {d:e}");
                     }
                 }
             }

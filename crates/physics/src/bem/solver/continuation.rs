@@ -170,7 +170,7 @@ pub(super) fn started_newton(
             h[j - 1] + t * (h[j] - h[j - 1])
         })
         .collect();
-    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v());
+    let op = Operator::new(mesh, params.lambda, params.k, &params.spectrum, params.v(), params.pressure);
     newton(&op, params, Control::Load(params.w), h, delta, max_iter, pre)
 }
 
@@ -194,7 +194,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
     let at = |lambda: f64, v: f64| Params { lambda, ..params.clone() }.with_v(v);
     let coarsest = levels[0];
     let finest = levels[levels.len() - 1];
-    let op0 = Operator::new(coarsest, lam0, params.k, &params.spectrum, 0.0);
+    let op0 = Operator::new(coarsest, lam0, params.k, &params.spectrum, 0.0, params.pressure);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
     let first = newton(&op0, &at(lam0, 0.0), Control::Load(params.w), h0, d0, 100, pre);
     let mut iterations = first.iterations;
@@ -211,7 +211,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
             let lambda = sol.params.lambda;
             let v_start = 1e-3 * mesh.a();
             let (s, it) = if v_target <= v_start {
-                let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v_target);
+                let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v_target, params.pressure);
                 let s = newton(&op, &at(lambda, v_target), Control::Load(params.w), sol.h.clone(), sol.delta, 40, pre);
                 let it = s.iterations;
                 (s, it)
@@ -220,7 +220,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                 // can snap the crack front across a lattice fold.
                 let max_factor = if lambda <= LAMBDA_START { SPEED_MAX_FACTOR } else { 4.0 };
                 continue_geometric(v_start, v_target, 4.0, max_factor, sol, |v, h, delta| {
-                    let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v);
+                    let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v, params.pressure);
                     newton(&op, &at(lambda, v), Control::Load(params.w), h.to_vec(), delta, 40, pre)
                 })
             };
@@ -242,7 +242,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                 if cap > from {
                     // Finer levels carry the stiff, large-lambda part of the path: smaller steps.
                     let factor = if i == 0 { 1.5 } else { 1.1 };
-                    let kern = MeshKernel::new(mesh.n, mesh.a(), v, params.k, &params.spectrum);
+                    let kern = MeshKernel::new(mesh.n, mesh.a(), v, params.k, &params.spectrum, params.pressure);
                     let (s, it) =
                         continue_geometric(from, cap, factor, (factor * factor).min(4.0), sol, |lambda, h, delta| {
                             let op = Operator::scaled(mesh, &kern, lambda);

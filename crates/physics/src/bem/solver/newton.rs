@@ -170,7 +170,7 @@ impl PathSolver {
     pub fn new(from: &Solution) -> PathSolver {
         let p = from.params.clone();
         PathSolver {
-            op: Operator::new(from.mesh, p.lambda, p.k, &p.spectrum, p.v()),
+            op: Operator::new(from.mesh, p.lambda, p.k, &p.spectrum, p.v(), p.pressure),
             params: p,
             pre: Preconditioner::default(),
         }

@@ -3,6 +3,7 @@
 //! the load), the element count that resolves the cohesive zone, and the 2D JKR closed
 //! forms that scale both.
 
+use crate::bem::kernel::Pressure;
 use crate::lennard_jones::ALPHA;
 use crate::rheology::Spectrum;
 use crate::theory::line_contact::jkr_half_width;
@@ -23,12 +24,14 @@ pub struct Params {
     pub spectrum: Spectrum,
     /// Newton's tolerance on the max-norm residual, in units of H (`TOLERANCE` by default).
     pub newton_tol: f64,
+    /// How the pressure varies over the mesh (`Pressure::Linear` by default).
+    pub pressure: Pressure,
 }
 
 impl Params {
     /// A point on the standard linear solid.
     pub fn sls(lambda: f64, w: f64, k: f64, v0: f64) -> Params {
-        Params { lambda, w, k, v0, spectrum: Spectrum::sls(), newton_tol: TOLERANCE }
+        Params { lambda, w, k, v0, spectrum: Spectrum::sls(), newton_tol: TOLERANCE, pressure: Pressure::Linear }
     }
     /// The Hertz half-width a0/beta = 2 sqrt(W/pi) (relaxed modulus).
     pub fn a0(&self) -> f64 {

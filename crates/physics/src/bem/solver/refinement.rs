@@ -99,7 +99,7 @@ pub(super) fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Optio
         pre.active = carried.take().filter(|a| nested_ratio(a.n, mesh.n).is_some());
         if pre.active.is_none() {
             let p = &coarse.params;
-            let op = Operator::new(coarse.mesh, p.lambda, p.k, &p.spectrum, p.v());
+            let op = Operator::new(coarse.mesh, p.lambda, p.k, &p.spectrum, p.v(), p.pressure);
             let sys = System::new(&op, Control::Load(p.w));
             let ev = sys.eval(&coarse.h, coarse.delta);
             pre.active = Some(ActiveLu::new(&sys, &ev.dp, DROP));

@@ -2,7 +2,7 @@
 //! by FFT), the control (load or approach), and the residual of Eq. 4.7 with the load
 //! equation, evaluated with its Jacobian's near-contact block.
 
-use super::super::kernel::MeshKernel;
+use super::super::kernel::{MeshKernel, Pressure};
 use super::params::Mesh;
 use crate::lennard_jones;
 use crate::numerics::toeplitz::Toeplitz;
@@ -25,8 +25,8 @@ pub(super) struct Operator {
 }
 
 impl Operator {
-    pub(super) fn new(mesh: Mesh, lambda: f64, k: f64, spectrum: &Spectrum, v: f64) -> Operator {
-        Operator::scaled(mesh, &MeshKernel::new(mesh.n, mesh.a(), v, k, spectrum), lambda)
+    pub(super) fn new(mesh: Mesh, lambda: f64, k: f64, spectrum: &Spectrum, v: f64, pressure: Pressure) -> Operator {
+        Operator::scaled(mesh, &MeshKernel::new(mesh.n, mesh.a(), v, k, spectrum, pressure), lambda)
     }
 
     /// The operator at `lambda` from the kernel of its mesh and speed (which lambda only
