@@ -370,43 +370,32 @@ mod tests {
     }
 
     #[test]
-    fn the_mesh_kernel_is_the_hat_at_every_offset() {
-        // Second differences of F2 at shared points give every coefficient of the hat,
-        // nodes and edges, SLS and a spectrum, elastic and moving (slow, where the creep
-        // kernel varies within an element, and fast).
+    fn the_mesh_kernel_is_the_hat_or_the_strip_at_every_offset() {
+        // Second differences of F2 (hats) and differences of Q (strips) at shared points give
+        // every coefficient, nodes and edges, SLS and a spectrum, elastic and moving (slow,
+        // where the creep kernel varies within an element, and fast): the hat against its
+        // quadrature and `hat_spectrum`, the strip against `strip_spectrum`.
         let (n, a) = (37, 0.03);
         for spectrum in [Spectrum::sls(), Spectrum::power_law(0.5, 1e-4, 2).unwrap()] {
             for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (0.7, 0.01), (30.0, 0.5), (2.0, 1.0)] {
-                let kern = MeshKernel::new(n, a, v, k, &spectrum, Pressure::Linear);
-                assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
                 let scale = elastic_strip(0.0, a);
-                let offsets =
-                    |len: usize, shift: f64| (0..len).map(move |i| 2.0 * a * (i as f64 - (n as f64 - 1.0)) - shift);
-                for (coefficients, shift) in [(&kern.nodes, 0.0), (&kern.edges, a)] {
-                    for (idx, (c, x)) in coefficients.iter().zip(offsets(coefficients.len(), shift)).enumerate() {
-                        let d = (c - hat_by_quadrature(x, a, v, k, &spectrum)).abs();
-                        assert!(d < 1e-10 * scale, "{idx} at {x} v={v} k={k}: {d:e}");
-                        let direct = hat_spectrum(x, a, v, k, &spectrum);
-                        assert!((c - direct).abs() < 1e-12 * scale, "{idx} v={v} k={k}");
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn with_uniform_pressure_the_mesh_kernel_is_the_strip_at_every_offset() {
-        let (n, a) = (37, 0.03);
-        for spectrum in [Spectrum::sls(), Spectrum::power_law(0.5, 1e-4, 2).unwrap()] {
-            for (v, k) in [(0.0, 0.1), (1e-3, 0.1), (0.7, 0.01), (30.0, 0.5), (2.0, 1.0)] {
-                let kern = MeshKernel::new(n, a, v, k, &spectrum, Pressure::Uniform);
-                assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
-                let scale = elastic_strip(0.0, a);
-                for (coefficients, shift) in [(&kern.nodes, 0.0), (&kern.edges, a)] {
-                    for (idx, c) in coefficients.iter().enumerate() {
-                        let x = 2.0 * a * (idx as f64 - (n as f64 - 1.0)) - shift;
-                        let d = (c - strip_spectrum(x, a, v, k, &spectrum)).abs();
-                        assert!(d < 1e-13 * scale, "{idx} at {x} v={v} k={k}: {d:e}");
+                for pressure in [Pressure::Linear, Pressure::Uniform] {
+                    let kern = MeshKernel::new(n, a, v, k, &spectrum, pressure);
+                    assert_eq!((kern.nodes.len(), kern.edges.len()), (2 * n - 1, 2 * n));
+                    for (coefficients, shift) in [(&kern.nodes, 0.0), (&kern.edges, a)] {
+                        for (idx, c) in coefficients.iter().enumerate() {
+                            let x = 2.0 * a * (idx as f64 - (n as f64 - 1.0)) - shift;
+                            let (reference, tol) = match pressure {
+                                Pressure::Linear => {
+                                    let direct = hat_spectrum(x, a, v, k, &spectrum);
+                                    assert!((c - direct).abs() < 1e-12 * scale, "{idx} v={v} k={k}");
+                                    (hat_by_quadrature(x, a, v, k, &spectrum), 1e-10)
+                                }
+                                Pressure::Uniform => (strip_spectrum(x, a, v, k, &spectrum), 1e-13),
+                            };
+                            let d = (c - reference).abs();
+                            assert!(d < tol * scale, "{pressure:?} {idx} at {x} v={v} k={k}: {d:e}");
+                        }
                     }
                 }
             }
