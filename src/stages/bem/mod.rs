@@ -77,7 +77,7 @@ pub struct BemParams {
 }
 }
 
-/// `pressure` of `bem.sweep` and `bem.profile`.
+/// `pressure` of `bem.sweep`, `bem.profile` and `bem.pulloff`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum PressureParam {
@@ -85,15 +85,22 @@ pub enum PressureParam {
     Uniform,
 }
 
+impl PressureParam {
+    /// The solver's `Pressure` (`Linear` when not given).
+    pub fn physics(p: Option<PressureParam>) -> Pressure {
+        match p {
+            Some(PressureParam::Uniform) => Pressure::Uniform,
+            Some(PressureParam::Linear) | None => Pressure::Linear,
+        }
+    }
+}
+
 impl BemParams {
     fn physics(&self) -> Params {
         Params {
             spectrum: self.material().spectrum(),
             newton_tol: self.newton_tol.unwrap_or(solver::TOLERANCE),
-            pressure: match self.pressure {
-                Some(PressureParam::Uniform) => Pressure::Uniform,
-                Some(PressureParam::Linear) | None => Pressure::Linear,
-            },
+            pressure: PressureParam::physics(self.pressure),
             ..Params::sls(self.lambda, self.W, self.k, self.V0)
         }
     }

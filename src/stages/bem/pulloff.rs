@@ -1,6 +1,7 @@
 //! Stage kind `bem.pulloff`: the pull-off load of the Chapter 4/5 model at one speed
 //! (`bem::solver::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
 
+use super::PressureParam;
 use crate::bem::solver::branch::{pull_off, PullOff};
 use crate::bem::solver::{self, ErrorShares, Mesh, Params};
 use crate::pipeline::kind::{Inputs, Kind, Output, Registry};
@@ -33,6 +34,9 @@ pub struct PullOffParams {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 1.0))]
     pub rel_tol: Option<f64>,
+    /// How the pressure varies over the mesh, as in `bem.sweep` (default `linear`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<PressureParam>,
 }
 
 /// The load the walk starts from.
@@ -81,7 +85,8 @@ impl Kind for BemPullOff {
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let start = Params::sls(p.lambda, W_START, p.k, 0.0).with_v(p.V);
+        let start = Params { pressure: PressureParam::physics(p.pressure), ..Params::sls(p.lambda, W_START, p.k, 0.0) }
+            .with_v(p.V);
         let rel_tol = p.rel_tol.unwrap_or(solver::DEFAULT_REL_TOL);
         let first = solver::starting_mesh(&start, rel_tol);
         // The search on a mesh of n elements (None if the starting solve fails).
