@@ -30,9 +30,10 @@
 //!   K(X) = U_el(X) + (1 - k) Sum_j w_j V_j [g((X+A)/V_j) - g((X-A)/V_j)].
 //! One term at t = 1 is the SLS kernel above, term for term.
 //!
-//! The solver's meshes (`MeshKernel`) take the pressure linear between nodes: the
-//! displacement of a hat of pressure is the strip averaged over one element, a second
-//! difference of the kernel's second antiderivative (`expint::g1` for the creep part).
+//! The solver's meshes (`MeshKernel`) take the pressure linear between nodes by default
+//! (`Pressure`): the displacement of a hat of pressure is the strip averaged over one
+//! element, a second difference of the kernel's second antiderivative (`expint::g1` for the
+//! creep part).
 
 use super::expint::{g, g1};
 use crate::rheology::Spectrum;
