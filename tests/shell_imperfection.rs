@@ -198,3 +198,36 @@ fn the_frictional_snap_does_not_depend_on_the_load_step() {
         assert!((s.0 / snaps[2].0 - 1.0).abs() < 1e-3 && (s.1 - snaps[2].1).abs() < 1e-3, "{snaps:?}");
     }
 }
+
+#[test]
+fn two_elements_of_the_full_rule_overstate_the_dissipated_energy_which_the_reduced_rule_does_not() {
+    // The frictional cycle of Fig. 3.6 (h/R = 0.06, mu = 0.5, no adhesion, apex force
+    // 0.05 F_c, to delta/R = 0.35 and back) on 120 meridian elements: W and F_buckling with
+    // 3 x 3 and with 2 x 2 Gauss points on two elements through the thickness, against 2 x 2
+    // points on four (converged in the thickness: on the default mesh four and eight
+    // elements of either rule agree to 0.05 %, `fem::mesh::default_mesh_w_rel_error`).
+    // Measured: W +1.16 % with 3 x 3 points, +0.04 % with 2 x 2; F_buckling +0.27 % and
+    // -0.05 %.
+    use repro::fem::element::Integration;
+    let cycle = |nt: usize, rule: Integration| {
+        let model = Model::new(ShellMesh::hemisphere(R, H, 120, nt, 3.0), E, NU, Base::Clamped)
+            .with_integration(rule)
+            .with_apex_force(0.05 * f_c());
+        let plate = Plate::new(&model.mesh, E, 1000.0).with_friction(0.5);
+        let opt = CycleOptions { unload: true, stop_at_buckling: false, ..options(0.35, 35, Criterion::Tangent) };
+        let c = load_unload(&model, &plate, E, opt);
+        assert!(c.complete);
+        (c.dissipated(), c.buckling.expect("it snaps").force_before / f_c())
+    };
+    let ((full, reduced), reference) = rayon::join(
+        || rayon::join(|| cycle(2, Integration::Full), || cycle(2, Integration::Reduced)),
+        || cycle(4, Integration::Reduced),
+    );
+    println!("W, F_buckling / F_c: full {full:?}, reduced {reduced:?}, reference {reference:?}");
+    let rel = |a: (f64, f64), b: (f64, f64)| (a.0 / b.0 - 1.0, a.1 / b.1 - 1.0);
+    let (w_full, f_full) = rel(full, reference);
+    let (w_reduced, f_reduced) = rel(reduced, reference);
+    assert!(w_full > 0.008 && w_full < 0.03, "3 x 3 on two elements: W {w_full:+e}");
+    assert!(w_reduced.abs() < 2e-3, "2 x 2 on two elements: W {w_reduced:+e}");
+    assert!(f_full > 0.0 && f_reduced.abs() < 0.5 * f_full, "F_buckling: 3 x 3 {f_full:+e}, 2 x 2 {f_reduced:+e}");
+}

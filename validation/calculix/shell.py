@@ -2,13 +2,15 @@
 """Like-for-like check of repro's Chapter 3 shell against CalculiX (Debian's calculix-ccx).
 
 The same hemispherical shell (inner radius R, thickness h, clamped base) on the same mesh
-(the node positions of `fem::mesh::ShellMesh::hemisphere`: CAX8 elements, n_meridian x
-n_thickness, sizes graded from the apex), the same St Venant-Kirchhoff law (CalculiX's
-*ELASTIC with NLGEOM; repro `material: saint_venant_kirchhoff`), the same imperfection (a
-point force at the inner apex pointing away from the plate) and the same penalty slope
+(the node positions of `fem::mesh::ShellMesh::hemisphere`: n_meridian x n_thickness 8-node
+elements, sizes graded from the apex), the same Gauss rule (repro's `integration: full`,
+3 x 3, the default, is CalculiX's CAX8; `reduced`, 2 x 2, its CAX8R), the same St
+Venant-Kirchhoff law (CalculiX's *ELASTIC with NLGEOM; repro `material:
+saint_venant_kirchhoff`), the same imperfection (a point force at the inner apex pointing
+away from the plate) and the same penalty slope
 (1000 E/h per unit overclosure) is pressed by a rigid plate under prescribed displacement.
 CalculiX: face-to-surface penalty contact against a layer of plate elements whose nodes all
-carry the plate displacement (master surface from r = 1e-3 mm), CAX8 over a 2-degree
+carry the plate displacement (master surface from r = 1e-3 mm), over a 2-degree
 segment (forces times 180 for the whole ring). repro: `fem.indent` with `stability:
 tangent`.
 
@@ -16,6 +18,7 @@ Prints the plate force F R/(E h^3) of both at chosen delta/R, the snap (the larg
 before the first drop of more than 2 %), and writes both paths (CSV) and a figure (SVG)
 into the output folder. Usage: `make validate-shell` or
   python3 validation/calculix/shell.py --out target/validate-shell [--repro PATH] [--apex-force A]
+      [--integration reduced|full]
 """
 
 import argparse
@@ -40,7 +43,7 @@ def graded_angles(n, grading):
 
 
 def shell_mesh(R, h, nm, nt, grading):
-    """Nodes {id: (r, z)}, CAX8 elements [(id, [8 nodes])], and the node sets of repro's mesh."""
+    """Nodes {id: (r, z)}, 8-node elements [(id, [8 nodes])], and the node sets of repro's mesh."""
     phi_el = graded_angles(nm, grading)
     ni, nj = 2 * nm + 1, 2 * nt + 1
     ids, nodes = {}, {}
@@ -92,7 +95,7 @@ def write_deck(path, a):
     lines = ["*HEADING", "repro validation: hemispherical shell pressed by a rigid plate", "*NODE, NSET=NALL"]
     lines += [f"{i}, {x[0]:.12g}, {x[1]:.12g}" for i, x in nodes.items()]
     lines += [f"{i}, {x[0]:.12g}, {x[1]:.12g}" for i, x in plate_nodes.items()]
-    lines.append("*ELEMENT, TYPE=CAX8, ELSET=ESHELL")
+    lines.append(f"*ELEMENT, TYPE={element_type(a)}, ELSET=ESHELL")
     lines += [f"{i}, " + ", ".join(map(str, c)) for i, c, _ in elements]
     lines.append("*ELEMENT, TYPE=CAX4, ELSET=EPLATE")
     lines += [f"{i}, " + ", ".join(map(str, c)) for i, c in plate_elements]
@@ -143,6 +146,11 @@ def run_calculix(folder, a):
     return path
 
 
+def element_type(a):
+    """CalculiX's axisymmetric 8-node element with repro's Gauss rule."""
+    return {"reduced": "CAX8R", "full": "CAX8"}[a.integration]
+
+
 def run_repro(folder, a, repro):
     pipeline = os.path.join(folder, "repro.yaml")
     with open(pipeline, "w") as f:
@@ -151,7 +159,7 @@ def run_repro(folder, a, repro):
     kind: fem.indent
     params:
       shell: {{R: {a.R}, h: {a.h}, E: {a.E}, nu: {a.nu}, n_meridian: {a.n_meridian}, n_thickness: {a.n_thickness},
-               grading: {a.grading}, material: saint_venant_kirchhoff, imperfection: {{apex_force: {a.apex_force}}}}}
+               grading: {a.grading}, material: saint_venant_kirchhoff, integration: {a.integration}, imperfection: {{apex_force: {a.apex_force}}}}}
       delta_max: {a.delta_max}
       steps: {a.steps}
       stability: tangent
@@ -231,6 +239,8 @@ def main():
     p.add_argument("--apex-force", type=float, default=0.05, help="in units of F_c = E h^3 / R")
     p.add_argument("--delta-max", type=float, default=0.3, help="delta/R")
     p.add_argument("--steps", type=int, default=120)
+    p.add_argument("--integration", choices=["full", "reduced"], default="full",
+                   help="Gauss rule: 3 x 3 (CAX8) or 2 x 2 (CAX8R)")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     ours = run_repro(a.out, a, a.repro)
@@ -243,7 +253,7 @@ def main():
         f.writelines(f"repro,{d},{fb}\n" for d, fb, _ in ours)
         f.writelines(f"calculix,{d},{fb}\n" for d, fb in theirs)
     print(f"R = {a.R} mm, h = {a.h} mm, E = {a.E}, nu = {a.nu}, St Venant-Kirchhoff, apex force {a.apex_force} F_c, "
-          f"{a.n_meridian} x {a.n_thickness} CAX8")
+          f"{a.n_meridian} x {a.n_thickness} {element_type(a)}")
     print(f"{'delta/R':>8} {'repro':>10} {'CalculiX':>10} {'diff %':>8}")
     for d in (0.05, 0.10, 0.15):
         f1, f2 = at(ours_flat, d), at(theirs, d)
@@ -253,7 +263,7 @@ def main():
     print(f"snap: repro {fmt(s1)}; CalculiX {fmt(s2)}")
     if s1 and s2:
         print(f"snap load difference: {100 * (s1[1] - s2[1]) / s2[1]:.2f} %")
-    svg({"repro (fem.indent)": [(d, f) for d, f, _ in ours], "CalculiX (CAX8, face-to-surface)": theirs},
+    svg({"repro (fem.indent)": [(d, f) for d, f, _ in ours], f"CalculiX ({element_type(a)}, face-to-surface)": theirs},
         os.path.join(a.out, "validate_shell.svg"),
         f"Shell R = {a.R:g} mm, h = {a.h:g} mm, St Venant-Kirchhoff, apex force {a.apex_force:g} F_c")
     print(f"paths: {a.out}/paths.csv, figure: {a.out}/validate_shell.svg")

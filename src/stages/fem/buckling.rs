@@ -7,7 +7,7 @@
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
 use super::map::MapModel;
-use super::{declared_mesh_error, snap_bracket};
+use super::{declared_mesh_error, declared_w_mesh_error, snap_bracket};
 use crate::fem::critical::probe;
 use crate::fem::cycle::{load_unload, Snap};
 use crate::fem::mesh_study::{MeshStudy, Outcome};
@@ -41,7 +41,7 @@ pub struct BucklingParams {
     pub dissipation: bool,
     /// Estimate the mesh's share of the errors of F_buckling and W at this point by a second
     /// cycle on twice the meridian elements, run alongside (`MeshStudy`; default false: the
-    /// declared error of the default mesh for F, none for others). Three to four times the
+    /// declared errors of the default mesh, none on other meshes). Three to four times the
     /// CPU time.
     #[serde(default)]
     pub mesh_study: bool,
@@ -77,7 +77,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 30;
+    const VERSION: u32 = 31;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
@@ -152,13 +152,15 @@ impl Kind for FemBuckling {
         let h = m.h(p.h_over_R);
         let (iterations, residual) =
             c.points.iter().fold((0usize, 0.0f64), |(i, r), q| (i.max(q.step.iterations), r.max(q.step.residual)));
-        // The mesh's share: the study's if one ran, else the declared error of the default
-        // mesh (F only), else none.
+        // The mesh's share: the study's if one ran, else the declared errors of the default
+        // mesh, else none.
         let (f_mesh, w_mesh, source) = match study {
             Some(st) => (st.f_error, st.w_error, "study"),
-            None if m.default_mesh() => {
-                (b.map_or(0.0, |j| declared_mesh_error(j.force_before, true, p.mu)), 0.0, "declared")
-            }
+            None if m.default_mesh() => (
+                b.map_or(0.0, |j| declared_mesh_error(j.force_before, true, p.mu)),
+                declared_w_mesh_error(w, true, m.integration),
+                "declared",
+            ),
             None => (0.0, 0.0, "none"),
         };
         Ok(Table::new()
@@ -193,7 +195,7 @@ impl Kind for FemBuckling {
             .with_f64("W_friction_Nmm", vec![finite(friction)])
             .with("n_meridian", ColumnData::I64(vec![n as i64]))
             // Where the mesh's share comes from: `study` (2 n elements run too), `declared`
-            // (the default mesh's measured error, F only) or `none`.
+            // (the default mesh's measured errors) or `none`.
             .with("mesh_error_source", ColumnData::Str(vec![source.to_string()]))
             .with("mesh_study_agrees", ColumnData::Bool(vec![study.is_none_or(|st| st.agrees)]))
             .with("complete", ColumnData::Bool(vec![c.complete]))
@@ -245,7 +247,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 21;
+    const VERSION: u32 = 22;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];

@@ -5,7 +5,7 @@
 #![allow(non_snake_case)] // parameter names as in the thesis
 
 use super::shell::{default_lift_threshold, Stability};
-use super::{declared_mesh_error, map, prefixed, shell, snap_bracket, ShellParams};
+use super::{declared_mesh_error, declared_w_mesh_error, map, prefixed, shell, snap_bracket, ShellParams};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Leg};
 use crate::fem::indent::Step;
@@ -74,7 +74,7 @@ pub struct IndentParams {
     pub hold: map::Hold,
     /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
     /// second cycle on twice the meridian elements, run alongside (`Cycles`; default false:
-    /// the declared error of the default mesh for forces, none for W or other meshes).
+    /// the declared errors of the default mesh, none on other meshes).
     /// Three to four times the CPU time.
     #[serde(default)]
     pub mesh_study: bool,
@@ -106,7 +106,7 @@ impl IndentParams {
             Support::Roller => Base::Roller,
         };
         let sh = &self.shell;
-        let model = shell::model(sh.mesh_on(n), sh.E, sh.nu, base, sh.material, &sh.imperfection);
+        let model = shell::model(sh.mesh_on(n), sh.E, sh.nu, base, sh.material, sh.integration, &sh.imperfection);
         let plate =
             Plate::new(&model.mesh, sh.E, self.penalty).with_adhesion(self.gamma, self.g0).with_friction(self.mu);
         (model, plate)
@@ -157,6 +157,7 @@ impl IndentParams {
             finer,
             default_mesh: self.shell.default_mesh(),
             mu: self.mu,
+            integration: self.shell.integration,
             source,
             step,
             friction,
@@ -199,6 +200,7 @@ pub(super) struct Cycles {
     finer: Option<Cycle>,
     default_mesh: bool,
     mu: f64,
+    integration: shell::Integration,
     source: &'static str,
     /// The load step (mesh units).
     step: f64,
@@ -226,7 +228,7 @@ impl Cycles {
 
     /// The mesh's shares of the errors of F_buckling and W (units of force and energy),
     /// with whether the two meshes agree on the cycle's events (`buckling::MeshStudy`); the
-    /// declared error of F_buckling on the default mesh and none for W without a study.
+    /// declared errors of the default mesh without a study.
     pub(super) fn event_errors(&self, w: f64, finer_w: impl Fn(&Cycle) -> f64) -> MeshStudy {
         let c = &self.cycle;
         match &self.finer {
@@ -235,7 +237,7 @@ impl Cycles {
             }
             None => MeshStudy {
                 f_error: c.buckling.map_or(0.0, |j| declared_mesh_error(j.force_before, self.default_mesh, self.mu)),
-                w_error: 0.0,
+                w_error: declared_w_mesh_error(w, self.default_mesh, self.integration),
                 agrees: true,
             },
         }
@@ -274,7 +276,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 32;
+    const VERSION: u32 = 33;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];

@@ -5,7 +5,7 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis
 
-use super::shell::{self, Imperfection, MaterialLaw, Stability};
+use super::shell::{self, Imperfection, Integration, MaterialLaw, Stability};
 use crate::fem::contact::Plate;
 use crate::fem::cycle::{CycleOptions, Snap};
 use crate::fem::mesh::ShellMesh;
@@ -116,6 +116,9 @@ pub struct MapModel {
     /// Hyperelastic law (`shell::MaterialLaw`).
     #[serde(skip_serializing_if = "MaterialLaw::is_default")]
     pub material: MaterialLaw,
+    /// Gauss rule of the elements (`shell::Integration`; default `full`, 3 x 3).
+    #[serde(skip_serializing_if = "Integration::is_default")]
+    pub integration: Integration,
     /// Imperfection (`shell::Imperfection`; default none).
     #[serde(skip_serializing_if = "Imperfection::is_none")]
     pub imperfection: Imperfection,
@@ -140,6 +143,7 @@ impl Default for MapModel {
             snap: SnapCriterion::Instability,
             stability: Stability::LiftThreshold,
             material: MaterialLaw::NeoHookean,
+            integration: Integration::Full,
             imperfection: Imperfection::default(),
         }
     }
@@ -179,7 +183,7 @@ impl MapModel {
     /// The shell with `n_meridian` elements along the meridian.
     pub(super) fn shell_with(&self, h_over_r: f64, n_meridian: usize) -> Model {
         let mesh = ShellMesh::hemisphere(self.R, self.h(h_over_r), n_meridian, self.n_thickness, self.grading);
-        shell::model(mesh, self.E, self.nu, Base::Clamped, self.material, &self.imperfection)
+        shell::model(mesh, self.E, self.nu, Base::Clamped, self.material, self.integration, &self.imperfection)
     }
 
     /// The mesh is the default one (whose resolution error is declared,

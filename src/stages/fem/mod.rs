@@ -13,7 +13,7 @@ pub mod profile;
 pub mod shell;
 
 use crate::fem::cycle::Jump;
-use crate::fem::mesh::{default_mesh_rel_error, ShellMesh};
+use crate::fem::mesh::{default_mesh_rel_error, default_mesh_w_rel_error, ShellMesh};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{ColumnData, Table};
 use crate::stages::check;
@@ -22,7 +22,7 @@ use indent::{default_g0, FemIndent};
 use profile::FemProfile;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use shell::{Imperfection, MaterialLaw};
+use shell::{Imperfection, Integration, MaterialLaw};
 
 pub(super) fn default_e() -> f64 {
     1.3
@@ -76,6 +76,10 @@ pub struct ShellParams {
     /// Hyperelastic law: `neo_hookean` (default), `saint_venant_kirchhoff` or `hencky`.
     #[serde(default, skip_serializing_if = "MaterialLaw::is_default")]
     pub material: MaterialLaw,
+    /// Gauss rule of the elements: `full` (3 x 3, default) or `reduced` (2 x 2, ANSYS
+    /// PLANE183's).
+    #[serde(default, skip_serializing_if = "Integration::is_default")]
+    pub integration: Integration,
     /// Imperfection: `{apex_force: F/F_c, dimple: depth/h, width: /sqrt(R h)}` (default none).
     #[serde(default, skip_serializing_if = "Imperfection::is_none")]
     pub imperfection: Imperfection,
@@ -154,6 +158,17 @@ impl Kind for FemMesh {
 pub(crate) fn declared_mesh_error(force: f64, default_mesh: bool, mu: f64) -> f64 {
     if default_mesh {
         default_mesh_rel_error(mu) * force.abs()
+    } else {
+        0.0
+    }
+}
+
+/// The declared resolution error of a cycle's dissipated energy `w` on the default mesh
+/// under the Gauss rule `integration` (`fem::mesh::default_mesh_w_rel_error`); 0 on other
+/// meshes (not measured).
+pub(crate) fn declared_w_mesh_error(w: f64, default_mesh: bool, integration: Integration) -> f64 {
+    if default_mesh {
+        default_mesh_w_rel_error(integration.into()) * w.abs()
     } else {
         0.0
     }

@@ -2,6 +2,7 @@
 //! its imperfection and the stability test that decides the snap-through, with the
 //! conversion to the physics' types (`fem::material::Law`, `fem::stability::Criterion`).
 
+use crate::fem::element;
 use crate::fem::material::Law;
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{Criterion, LIFT_THRESHOLD};
@@ -36,6 +37,34 @@ impl From<MaterialLaw> for Law {
             MaterialLaw::NeoHookean => Law::NeoHookean,
             MaterialLaw::SaintVenantKirchhoff => Law::SaintVenantKirchhoff,
             MaterialLaw::Hencky => Law::Hencky,
+        }
+    }
+}
+
+/// The Gauss rule of the shell's elements (`fem::element::Integration`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum Integration {
+    /// 3 x 3 points (the default): CalculiX's CAX8.
+    #[default]
+    Full,
+    /// 2 x 2 points: ANSYS PLANE183's rule (the thesis' element), CalculiX's CAX8R; free of
+    /// the 3 x 3 rule's locking with two elements through the thickness, but not under the
+    /// apex force of thick shells (docs/shell.md, "The element's Gauss rule").
+    Reduced,
+}
+
+impl Integration {
+    pub fn is_default(&self) -> bool {
+        *self == Integration::Full
+    }
+}
+
+impl From<Integration> for element::Integration {
+    fn from(i: Integration) -> element::Integration {
+        match i {
+            Integration::Reduced => element::Integration::Reduced,
+            Integration::Full => element::Integration::Full,
         }
     }
 }
@@ -126,15 +155,18 @@ pub fn default_lift_threshold() -> f64 {
     LIFT_THRESHOLD
 }
 
-/// The shell model: mesh shaped by the imperfection, law, supports, apex force.
+/// The shell model: mesh shaped by the imperfection, law, Gauss rule, supports, apex force.
+#[allow(clippy::too_many_arguments)]
 pub fn model(
     mesh: ShellMesh,
     e: f64,
     nu: f64,
     base: crate::fem::system::Base,
     law: MaterialLaw,
+    integration: Integration,
     imperfection: &Imperfection,
 ) -> Model {
-    let model = Model::new(imperfection.shape(mesh), e, nu, base).with_law(law.into());
+    let model =
+        Model::new(imperfection.shape(mesh), e, nu, base).with_law(law.into()).with_integration(integration.into());
     imperfection.load(model, e)
 }

@@ -12,7 +12,7 @@
 // Index loops over local dofs read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::element::{energy_of, forces_and_tangent_into, forces_of, ForcesAndTangent, Geometry};
+use super::element::{energy_of, forces_and_tangent_into, forces_of, ForcesAndTangent, Geometry, Integration};
 use super::material::{Law, Material};
 use super::mesh::ShellMesh;
 use crate::numerics::banded::{Band, BandCholesky, BandLu};
@@ -78,6 +78,11 @@ pub struct Model {
     /// The elements' forces and tangents of an assembly, kept for the next one: each is
     /// written whole, so the 1 MB need not be allocated and cleared every time.
     blocks: std::sync::Mutex<Vec<ForcesAndTangent>>,
+}
+
+/// Each element's Gauss-point geometry under `integration`.
+fn element_geometry(mesh: &ShellMesh, integration: Integration) -> Vec<Geometry> {
+    mesh.elements.iter().map(|el| Geometry::new(&std::array::from_fn(|a| mesh.nodes[el[a]]), integration)).collect()
 }
 
 /// Displacements with their internal forces and tangent.
@@ -281,8 +286,7 @@ impl Model {
                 fixed[2 * a] = true;
             }
         }
-        let geometry =
-            mesh.elements.iter().map(|el| Geometry::new(&std::array::from_fn(|a| mesh.nodes[el[a]]))).collect();
+        let geometry = element_geometry(&mesh, Integration::default());
         let pattern = Arc::new(Pattern::new(&mesh, &fixed));
         Model {
             mesh,
@@ -295,6 +299,13 @@ impl Model {
             last: std::sync::Mutex::new(None),
             blocks: Default::default(),
         }
+    }
+
+    /// The model with another Gauss rule for its elements (`Integration::default()`, 3 x 3,
+    /// unless given).
+    pub fn with_integration(mut self, integration: Integration) -> Model {
+        self.geometry = element_geometry(&self.mesh, integration);
+        self
     }
 
     /// The model with another hyperelastic law (same E and nu).
