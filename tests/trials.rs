@@ -71,16 +71,16 @@ fn fifty_kills_at_random_moments_resume_to_the_same_outputs() {
     // Where the kills near the end land: narrowed towards the short window in which every
     // task is stored and the run assembles and publishes (a kill after the run's end moves
     // its upper bound down, one while it still computes its lower bound up), so that the
-    // window is reached whatever this machine's timing. The other kills land anywhere before
-    // that upper bound: a run under the load of the other tests can be much shorter or
-    // longer than the reference runs were.
+    // window is reached whatever this machine's timing. The other kills land anywhere while
+    // the run still computes, before that lower bound: a run under the load of the other
+    // tests can be much shorter or longer than the reference runs were.
     let (mut lo, mut hi) = (0.75 * total, 1.1 * total);
     for i in 0..50 {
         let s = Scratch::new(&format!("kills-{i}"));
         s.write("p.yaml", &yaml);
         // Half the kills anywhere in the run, half near its end, where it publishes.
         let near_end = i % 2 == 1;
-        let at = if near_end { lo + (hi - lo) * rng.unit() } else { rng.unit() * hi };
+        let at = if near_end { lo + (hi - lo) * rng.unit() } else { rng.unit() * lo };
         let mut child = s.spawn_run("p.yaml", &["--jobs", "2"]);
         std::thread::sleep(Duration::from_secs_f64(at));
         let alive = child.try_wait().unwrap().is_none();
@@ -113,7 +113,7 @@ fn fifty_kills_at_random_moments_resume_to_the_same_outputs() {
     println!(
         "50 kills (run of {total:.2} s): {computing} while computing, {publishing} after every task was stored (assembling, publishing), {finished} after the run had ended"
     );
-    assert!(computing >= 10 && publishing >= 5, "the kills reach every phase: {computing} {publishing}");
+    assert!(computing >= 15 && publishing >= 5, "the kills reach every phase: {computing} {publishing}");
 }
 
 /// A finished run's directory, copied (cache, outputs, pipeline) for one trial.
