@@ -50,8 +50,9 @@ pub enum Integration {
     Full,
     /// 2 x 2 points: ANSYS PLANE183's rule (the thesis' element), CalculiX's CAX8R; free of
     /// the 3 x 3 rule's excess stiffness under adhesion and friction with two elements
-    /// through the thickness, but not usable under the apex force of thick shells
-    /// (docs/shell.md, "The element's Gauss rule").
+    /// through the thickness, but its spurious mode spoils the pressure under an apex
+    /// force, and thick shells give way under it (docs/shell.md, "The element's Gauss
+    /// rule").
     Reduced,
 }
 
