@@ -2,7 +2,7 @@
 //! peaks, deterministic, content-addressed (reruns and dry runs), with located errors.
 //! Uses Persson's friction (`theory.persson`), whose peak in V0 is sharp and cheap.
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 
 fn pipeline(v0: &str) -> String {

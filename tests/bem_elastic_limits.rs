@@ -6,7 +6,7 @@
 //! checked here (and the reason the high-speed limit is far from JKR at moderate lambda:
 //! lambda' = 0.65 for lambda = 3, k = 0.1).
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 
 use repro::bem::solver::branch::pull_off;

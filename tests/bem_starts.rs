@@ -1,7 +1,7 @@
 //! A BEM sweep started from states of another stage (`bem.sweep`'s `start`, read row by row):
 //! the same mu* as from scratch, for fewer Newton iterations, and the start each point used.
 
-mod common;
+use crate::common;
 use common::{column, rejected, Scratch};
 
 const PIPELINE: &str = r#"stages:

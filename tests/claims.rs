@@ -5,7 +5,7 @@
 //! lambda = 0.1 and -1.5016 at lambda = 10 (`tables/maugis_pulloff.parquet`), DMT -2 and
 //! JKR -1.5.
 
-mod common;
+use crate::common;
 use common::{column, strings, Scratch};
 
 /// A pipeline with Maugis' pull-off at three lambdas and four claims on it; `jkr_tol` is the

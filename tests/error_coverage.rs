@@ -5,7 +5,7 @@
 //! at 100 times tighter tolerance (on the longer domain that tolerance asks for). The full
 //! 225-point grid up to lambda = 10 is `make coverage` (docs/performance.md).
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 
 #[test]

@@ -3,7 +3,7 @@
 //! hash of its output is recorded per `kind@vN` in tests/kind_fingerprints.json. If the
 //! output changes while the version stays, this test fails: bump the kind's VERSION (which
 //! invalidates exactly that kind's cached results and what depends on them), then record
-//! the new fingerprint with `REPRO_BLESS=1 cargo test --test kind_versions`.
+//! the new fingerprint with `REPRO_BLESS=1 cargo test --test integration kind_versions`.
 
 use repro::pipeline::cache::output_hash;
 use repro::pipeline::kind::{Inputs, Output};

@@ -2,7 +2,7 @@
 //! point reads only the rows of the points of S whose parameters match its own, and its key
 //! depends on those rows alone (read from the run report and the tables, not assumed).
 
-mod common;
+use crate::common;
 use common::{column, rejected, Scratch};
 use serde_json::json;
 

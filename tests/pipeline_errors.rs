@@ -1,7 +1,7 @@
 //! Invalid pipeline files: every error names the file, line and column and says what is
 //! wrong; nothing is run or written; the exit code says "invalid input" (2).
 
-mod common;
+use crate::common;
 use common::{rejected, Scratch};
 
 #[test]

@@ -2,7 +2,7 @@
 //! retardation spectrum (`rheology::Spectrum`), checked against the SLS where they must
 //! agree, and through the orchestrator (fields `s`, `tau_ratio`, `per_decade`, `prony`).
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 use repro::bem::solver::{solve, Mesh, Params};
 use repro::rheology::Spectrum;

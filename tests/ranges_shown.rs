@@ -3,7 +3,7 @@
 //! against it: warnings for parts of the range without points and for points that nothing
 //! shows; located errors for a `shown` sweep that no figure gives a range.
 
-mod common;
+use crate::common;
 use common::Scratch;
 use repro::pipeline::parse;
 use repro::pipeline::spec::{self, Pipeline};

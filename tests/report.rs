@@ -3,7 +3,7 @@
 //! (a Content-Security-Policy of `default-src 'none'`, no external reference). The browser
 //! check of the same page is `make report-check` (.ci/report_check.mjs), run by CI.
 
-mod common;
+use crate::common;
 use common::Scratch;
 
 const PIPELINE: &str = r#"

@@ -1,7 +1,7 @@
 //! Chapter 5 through the orchestrator: a rolling sweep on and beneath the substrate
 //! (lambda = 3, k = 0.001, |W| = 0.1) and the Persson-Brener calibration of alpha on it.
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 
 const PIPELINE: &str = r#"

@@ -1,7 +1,7 @@
 //! The Chapter 3 stages end to end: `fem.indent` (load-unload cycle) and `fem.profile`
 //! (Fig. 3.3 states) on a coarse mesh of the thesis shell (R = 15, h = 1, E = 1.3).
 
-mod common;
+use crate::common;
 use common::{column, strings, Scratch};
 
 const SHELL: &str = "{R: 15, h: 1, n_meridian: 60, n_thickness: 3, grading: 8}";

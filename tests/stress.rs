@@ -3,7 +3,7 @@
 //! converged with their residual and iterations; no task fails, no NaN or infinity reaches
 //! a table (the executor rejects such outputs), and the summary says what converged.
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 
 const GRID: &str = r#"stages:

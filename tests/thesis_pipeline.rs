@@ -2,7 +2,7 @@
 //! figures with their tables, a rerun that computes nothing, and the values read back
 //! from the published Parquet tables.
 
-mod common;
+use crate::common;
 use common::{column, strings, Scratch};
 use polars::prelude::*;
 

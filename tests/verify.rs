@@ -1,7 +1,7 @@
 //! `repro verify`: a copy of committed figures passes; one changed value in a table, or one
 //! changed number in an SVG, fails with the file, the column and row (or line) named.
 
-mod common;
+use crate::common;
 use common::{column, Scratch};
 use polars::prelude::{DataType, NamedFrom, ParquetWriter, Series};
 use std::path::Path;
