@@ -197,3 +197,37 @@ fn no_crate_s_modules_import_each_other_in_a_cycle() {
     assert!(g["bem::solver::continuation"].contains("bem::solver::branch"), "{g:?}");
     assert!(g["bem::maxima"].contains("bem::solver"), "{g:?}");
 }
+
+#[test]
+fn every_integration_test_file_is_built() {
+    // `Cargo.toml` turns off cargo's discovery of tests (`autotests = false`): a file in tests/
+    // runs only as a `[[test]]` of its own or as a module of tests/integration.rs. One that is
+    // neither would be silently skipped.
+    let manifest = std::fs::read_to_string("Cargo.toml").unwrap();
+    let declared: BTreeSet<String> = manifest
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("path = \"tests/")?.strip_suffix(".rs\"").map(str::to_string))
+        .collect();
+    let merged: BTreeSet<String> = code(Path::new("tests/integration.rs"))
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("mod ")?.strip_suffix(';').map(str::to_string))
+        .collect();
+    assert!(declared.contains("integration") && merged.contains("common"), "{declared:?} {merged:?}");
+    let mut missing = Vec::new();
+    for e in std::fs::read_dir("tests").unwrap().flatten() {
+        let p = e.path();
+        if let Some(stem) = p.extension().filter(|x| *x == "rs").and(p.file_stem()).and_then(|s| s.to_str()) {
+            if !declared.contains(stem) && !merged.contains(stem) {
+                missing.push(stem.to_string());
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "tests/{{{}}}.rs: neither a [[test]] in Cargo.toml nor a module of tests/integration.rs",
+        missing.join(", ")
+    );
+    // No file is built twice (its tests would run twice).
+    let twice: Vec<&String> = declared.intersection(&merged).collect();
+    assert!(twice.is_empty(), "built both on its own and in tests/integration.rs: {twice:?}");
+}
