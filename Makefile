@@ -2,7 +2,7 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: coverage figures test build schema schema-check clean-cache lint bench bench-gamma-c validate-shell verify report report-check readme-example
+.PHONY: coverage figures test build schema schema-check clean-cache lint bench bench-chapter3 bench-gamma-c validate-shell verify report report-check readme-example
 
 build:
 	$(CARGO) build
@@ -81,6 +81,18 @@ bench-gamma-c:
 	rm -rf target/bench-gamma-c
 	/usr/bin/time -f "gamma_c map: %e s wall, %U s user" ./target/release/repro run $(PIPELINE) --target gamma_c_map \
 		--cache target/bench-gamma-c/cache --figures target/bench-gamma-c/figures --tables target/bench-gamma-c/tables -q
+
+# Chapter 3's stages (every fem.* stage of the thesis pipeline) from an empty cache, in the
+# profile `make figures` builds: the run's summary gives each stage's task time (docs/shell.md,
+# "Cost").
+CHAPTER3 = shell_mesh shell_indent shell_profile shell_indent_adhesive shell_gamma shell_mu \
+	buckling_vs_mu buckling_vs_gamma exp_rough exp_moderate exp_smooth imperfection_apex \
+	imperfection_dimple imperfection_perfect shell_material shell_material_svk shell_material_hencky \
+	gamma_c buckling_limit gamma_c_map
+bench-chapter3: build
+	rm -rf target/bench-chapter3
+	$(CARGO) run --quiet -- run $(PIPELINE) $(addprefix --target ,$(CHAPTER3)) --cache target/bench-chapter3/cache \
+		--figures target/bench-chapter3/figures --tables target/bench-chapter3/tables --report target/bench-chapter3/run.json
 
 # Run time against error (pipelines/bench.yaml: figures/bench_bem.svg, bench_bem24.svg, bench_fem.svg, bench_pulloff.svg and
 # tables/pareto_*.parquet) on an empty cache so that every wall time is measured, the full

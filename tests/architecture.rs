@@ -231,3 +231,24 @@ fn every_integration_test_file_is_built() {
     let twice: Vec<&String> = declared.intersection(&merged).collect();
     assert!(twice.is_empty(), "built both on its own and in tests/integration.rs: {twice:?}");
 }
+
+#[test]
+fn the_chapter3_bench_runs_every_shell_stage_of_the_thesis_pipeline() {
+    // `make bench-chapter3` names its stages (CHAPTER3 in the Makefile): a shell stage added
+    // to the pipeline and not to the list would go unmeasured.
+    let makefile = std::fs::read_to_string("Makefile").unwrap();
+    let start = makefile.find("\nCHAPTER3 =").expect("CHAPTER3 in the Makefile") + "\nCHAPTER3 =".len();
+    let mut listed = BTreeSet::new();
+    for line in makefile[start..].lines() {
+        listed.extend(line.trim_end_matches('\\').split_whitespace().map(str::to_string));
+        if !line.ends_with('\\') {
+            break;
+        }
+    }
+    let text = std::fs::read_to_string("pipelines/thesis.yaml").unwrap();
+    let pipeline = repro::pipeline::parse::parse("pipelines/thesis.yaml", &text, &repro::stages::registry()).unwrap();
+    let shell: BTreeSet<String> =
+        pipeline.stages.iter().filter(|s| s.kind.starts_with("fem.")).map(|s| s.name.clone()).collect();
+    assert!(shell.len() >= 20, "{shell:?}");
+    assert_eq!(listed, shell);
+}

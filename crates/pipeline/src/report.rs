@@ -131,7 +131,8 @@ impl RunReport {
         self.count(Status::Failed) + self.count(Status::Skipped) > 0
     }
 
-    /// A human summary: totals, then per stage what ran and why, then failures.
+    /// A human summary: totals, then per stage what ran, the task time of what it computed
+    /// and why it ran, then failures.
     pub fn summary(&self, explain: bool) -> String {
         let mut s = String::new();
         let mut stages: Vec<&str> = Vec::new();
@@ -168,7 +169,10 @@ impl RunReport {
                     if reasons.len() > 3 { format!(", … {} more reasons", reasons.len() - 3) } else { String::new() };
                 format!(" ({}{more})", list.join("; "))
             };
-            s.push_str(&format!("  {stage:<16} {}{why}\n", parts.join(", ")));
+            // What the stage's computed tasks cost, summed over workers (one core each).
+            let task_time: f64 = tasks.iter().filter(|t| t.status == Status::Computed).map(|t| t.wall_time_s).sum();
+            let cost = if task_time > 0.0 { format!(", {task_time:.1} s of task time") } else { String::new() };
+            s.push_str(&format!("  {stage:<16} {}{cost}{why}\n", parts.join(", ")));
             if explain {
                 for t in &tasks {
                     let label = if t.point.is_empty() { "(single point)" } else { &t.point };
@@ -267,5 +271,44 @@ mod time_tests {
         assert_eq!(super::utc_time(951_827_696_000), "2000-02-29 12:34:56 UTC");
         // 2026-11-25 00:00:00 UTC = 1795564800 s.
         assert_eq!(super::utc_time(1_795_564_800_000), "2026-11-25 00:00:00 UTC");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(stage: &str, status: Status, wall_time_s: f64) -> TaskRecord {
+        TaskRecord {
+            stage: stage.into(),
+            kind: "k".into(),
+            point: String::new(),
+            key: None,
+            status,
+            reason: None,
+            wall_time_s,
+            started_s: None,
+            error: None,
+            failure: None,
+            ran_on: None,
+        }
+    }
+
+    #[test]
+    fn the_summary_gives_each_stage_the_task_time_of_what_it_computed() {
+        let report = RunReport {
+            tasks: vec![
+                record("shell", Status::Computed, 2.25),
+                record("shell", Status::Computed, 1.5),
+                record("shell", Status::Cached, 0.0),
+                record("bem", Status::Cached, 0.0),
+            ],
+            ..Default::default()
+        };
+        let summary = report.summary(false);
+        let line = |stage: &str| summary.lines().find(|l| l.trim_start().starts_with(stage)).unwrap().to_string();
+        // 2.25 + 1.5 s; the cached task adds nothing.
+        assert!(line("shell").contains("2 computed, 1 cached, 3.8 s of task time"), "{summary}");
+        assert!(!line("bem").contains("task time"), "{summary}");
     }
 }
