@@ -169,9 +169,10 @@ impl RunReport {
                     if reasons.len() > 3 { format!(", … {} more reasons", reasons.len() - 3) } else { String::new() };
                 format!(" ({}{more})", list.join("; "))
             };
-            // What the stage's computed tasks cost, summed over workers (one core each).
+            // What the stage's computed tasks cost, summed over workers (one core each); not
+            // shown where it rounds to nothing.
             let task_time: f64 = tasks.iter().filter(|t| t.status == Status::Computed).map(|t| t.wall_time_s).sum();
-            let cost = if task_time > 0.0 { format!(", {task_time:.1} s of task time") } else { String::new() };
+            let cost = if task_time >= 0.05 { format!(", {task_time:.1} s of task time") } else { String::new() };
             s.push_str(&format!("  {stage:<16} {}{cost}{why}\n", parts.join(", ")));
             if explain {
                 for t in &tasks {
@@ -302,6 +303,7 @@ mod tests {
                 record("shell", Status::Computed, 1.5),
                 record("shell", Status::Cached, 0.0),
                 record("bem", Status::Cached, 0.0),
+                record("figure", Status::Computed, 0.01),
             ],
             ..Default::default()
         };
@@ -310,5 +312,6 @@ mod tests {
         // 2.25 + 1.5 s; the cached task adds nothing.
         assert!(line("shell").contains("2 computed, 1 cached, 3.8 s of task time"), "{summary}");
         assert!(!line("bem").contains("task time"), "{summary}");
+        assert!(!line("figure").contains("task time"), "{summary}");
     }
 }
