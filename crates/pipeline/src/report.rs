@@ -141,6 +141,8 @@ impl RunReport {
                 stages.push(&t.stage);
             }
         }
+        // The stage names in a column as wide as the longest (at least 16).
+        let width = stages.iter().map(|s| s.chars().count()).max().unwrap_or(0).max(16);
         for stage in stages {
             let tasks: Vec<&TaskRecord> = self.tasks.iter().filter(|t| t.stage == stage).collect();
             let mut by_status: BTreeMap<Status, usize> = BTreeMap::new();
@@ -173,7 +175,7 @@ impl RunReport {
             // shown where it rounds to nothing.
             let task_time: f64 = tasks.iter().filter(|t| t.status == Status::Computed).map(|t| t.wall_time_s).sum();
             let cost = if task_time >= 0.05 { format!(", {task_time:.1} s of task time") } else { String::new() };
-            s.push_str(&format!("  {stage:<16} {}{cost}{why}\n", parts.join(", ")));
+            s.push_str(&format!("  {stage:<width$} {}{cost}{why}\n", parts.join(", ")));
             if explain {
                 for t in &tasks {
                     let label = if t.point.is_empty() { "(single point)" } else { &t.point };
@@ -313,5 +315,13 @@ mod tests {
         assert!(line("shell").contains("2 computed, 1 cached, 3.8 s of task time"), "{summary}");
         assert!(!line("bem").contains("task time"), "{summary}");
         assert!(!line("figure").contains("task time"), "{summary}");
+        // One column for the counts, however long a stage's name.
+        let long = RunReport {
+            tasks: vec![record("shell_indent_adhesive", Status::Cached, 0.0), record("bem", Status::Cached, 0.0)],
+            ..Default::default()
+        };
+        let columns: Vec<usize> = long.summary(false).lines().filter_map(|l| l.find(" 1 cached")).collect();
+        assert_eq!(columns.len(), 2);
+        assert_eq!(columns[0], columns[1], "{}", long.summary(false));
     }
 }
