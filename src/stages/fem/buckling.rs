@@ -6,7 +6,7 @@
 
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
-use super::map::MapModel;
+use super::map::{MapModel, SnapCriterion};
 use super::{declared_mesh_error, declared_w_mesh_error, snap_bracket};
 use crate::fem::critical::probe;
 use crate::fem::cycle::{load_unload, Snap};
@@ -116,7 +116,14 @@ impl Kind for FemBuckling {
 
     fn validate(p: &BucklingParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        p.point_model().validate(&mut e);
+        let m = p.point_model();
+        m.validate(&mut e);
+        if p.dissipation && matches!(m.snap, SnapCriterion::Thesis | SnapCriterion::ThesisPasses(_)) {
+            e.push(FieldError::new(
+                "dissipation",
+                "the thesis' staggered procedure (`snap: thesis`) runs the loading leg only: set `dissipation: false`",
+            ));
+        }
         e
     }
 

@@ -7,7 +7,7 @@
 
 use super::shell::{self, Imperfection, Integration, MaterialLaw, Stability};
 use crate::fem::contact::Plate;
-use crate::fem::cycle::{CycleOptions, Snap};
+use crate::fem::cycle::{CycleOptions, Passes, Snap};
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use crate::fem::system::{Base, Model};
@@ -40,6 +40,13 @@ pub enum SnapCriterion {
     /// The state lands on the inverted branch: the drop a displacement-controlled experiment
     /// sees (states given up by the test but held by the energy do not count).
     Landing,
+    /// The thesis' staggered procedure (Section 3.2), its passes iterated to convergence at
+    /// each displacement step; buckling is the first negative slope of F(delta)
+    /// (`fem::cycle::Passes::Converged`). Loading leg only.
+    Thesis,
+    /// The thesis' staggered procedure with this many passes with adhesive loads per
+    /// displacement step (`fem::cycle::Passes::Fixed`).
+    ThesisPasses(u32),
 }
 
 impl SnapCriterion {
@@ -53,6 +60,8 @@ impl From<SnapCriterion> for Snap {
         match c {
             SnapCriterion::Instability => Snap::Instability,
             SnapCriterion::Landing => Snap::Landing,
+            SnapCriterion::Thesis => Snap::Staggered(Passes::Converged),
+            SnapCriterion::ThesisPasses(n) => Snap::Staggered(Passes::Fixed(n)),
         }
     }
 }
@@ -107,7 +116,8 @@ pub struct MapModel {
     pub bisections: u32,
     /// What holds touching adhesive points in the stability test.
     pub hold: Hold,
-    /// What counts as a snap-through: `instability` (default) or `landing`.
+    /// What counts as a snap-through: `instability` (default), `landing`, `thesis` or
+    /// `{thesis_passes: n}` (`SnapCriterion`).
     #[serde(skip_serializing_if = "SnapCriterion::is_default")]
     pub snap: SnapCriterion,
     /// Stability test: `lift_threshold` (default) or `tangent` (`shell::Stability`).
@@ -165,6 +175,14 @@ fn max_cuts(base_over_r: f64) -> u32 {
 impl MapModel {
     pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
         self.imperfection.validate(e, "model.");
+        if let SnapCriterion::ThesisPasses(n) = self.snap {
+            if !(1..=crate::fem::cycle::MAX_PASSES).contains(&n) {
+                e.push(FieldError::new(
+                    "model.snap.thesis_passes",
+                    format!("passes per step must lie in 1..={}, got {n}", crate::fem::cycle::MAX_PASSES),
+                ));
+            }
+        }
     }
 
     pub(super) fn h(&self, h_over_r: f64) -> f64 {

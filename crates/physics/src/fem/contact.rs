@@ -21,7 +21,8 @@
 
 use super::adhesion::{Adhesion, Tangent};
 use super::mesh::ShellMesh;
-use super::system::TangentSink;
+use super::system::{NoTangent, TangentSink};
+use std::sync::Arc;
 
 /// The contact state of the outer nodes at one configuration.
 #[derive(Clone, Debug, Default)]
@@ -67,6 +68,29 @@ pub struct Plate {
     pub stiffness: f64,
     pub adhesion: Option<Adhesion>,
     pub friction: Option<Friction>,
+    /// Adhesive forces frozen as dead loads (`FrozenAdhesion`: the structural solve of the
+    /// thesis' staggered procedure, Section 3.2); none in the monolithic model.
+    pub frozen: Option<Arc<FrozenAdhesion>>,
+}
+
+/// The adhesive forces of one configuration, applied as dead loads: the gradient dU/du of
+/// the adhesive energy there (full dof vector, as `Adhesion::apply` writes it; the load on
+/// the shell is its negative) and the plate force it makes (the adhesive pull, <= 0).
+#[derive(Clone, Debug)]
+pub struct FrozenAdhesion {
+    pub gradient: Vec<f64>,
+    pub pull: f64,
+}
+
+impl FrozenAdhesion {
+    /// The adhesive forces of `adhesion` at displacements `u`, the plate at z = `z_plate`.
+    pub fn at(adhesion: &Adhesion, mesh: &ShellMesh, u: &[f64], z_plate: f64) -> FrozenAdhesion {
+        let n = 2 * mesh.n_nodes();
+        let mut gradient = vec![0.0; n];
+        let (pull, _) =
+            adhesion.apply(mesh, u, z_plate, &mut gradient, &mut NoTangent, &mut vec![0.0; n], Tangent::Exact);
+        FrozenAdhesion { gradient, pull }
+    }
 }
 
 impl Plate {
@@ -77,7 +101,7 @@ impl Plate {
                 weights[q.outer[k]] += q.shape[k] * 2.0 * std::f64::consts::PI * q.r * q.ds * q.weight;
             }
         }
-        Plate { weights, stiffness: penalty * e / mesh.thickness, adhesion: None, friction: None }
+        Plate { weights, stiffness: penalty * e / mesh.thickness, adhesion: None, friction: None, frozen: None }
     }
 
     /// With Lennard-Jones adhesion of work `gamma` and range `g0` (none if gamma = 0).
@@ -123,7 +147,8 @@ impl Plate {
             let n = 2 * mesh.n_nodes();
             ad.apply(mesh, u, z_plate, &mut vec![0.0; n], &mut Vec::new(), &mut vec![0.0; n], Tangent::Exact).1
         });
-        penalty + adhesive
+        let frozen = self.frozen.as_ref().map_or(0.0, |f| f.gradient.iter().zip(u).map(|(g, x)| g * x).sum());
+        penalty + adhesive + frozen
     }
 
     /// Interface forces (added to `f_ext`, full dof vector), tangent entries of the residual
@@ -196,6 +221,11 @@ impl Plate {
             f_ext.iter_mut().zip(&grad).for_each(|(f, g)| *f -= g);
             s.adhesive = pull;
             s.force += pull;
+        }
+        if let Some(frozen) = &self.frozen {
+            f_ext.iter_mut().zip(&frozen.gradient).for_each(|(f, g)| *f -= g);
+            s.adhesive += frozen.pull;
+            s.force += frozen.pull;
         }
         s
     }

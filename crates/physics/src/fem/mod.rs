@@ -27,5 +27,6 @@ pub mod indent;
 pub mod material;
 pub mod mesh;
 pub mod mesh_study;
+pub mod problem;
 pub mod stability;
 pub mod system;

@@ -1,6 +1,8 @@
 use super::jump::*;
 use super::*;
-use crate::fem::indent::apex_z;
+use crate::fem::indent::{apex_z, solve_from, Options};
+use crate::fem::problem::ShellProblem;
+use crate::fem::stability::unilaterally_stable;
 
 #[test]
 fn a_walk_halves_its_steps_where_they_fail_and_lands_on_the_target() {
@@ -112,19 +114,20 @@ fn the_shell_snaps_through_on_loading_and_back_on_unloading() {
     let end = c.unstable.last().unwrap();
     assert!(end.delta >= b.delta && fbar(end.contact.force) > 9.0, "{}", end.delta / R);
     // A saddle (a state of that branch) is left for a minimum below it, descending from a
-    // neighbouring state (`stable_or_descend`, as the jump-in does); a stable state is
+    // neighbouring state (`stable_or_rest`, as the jump-in does); a stable state is
     // kept as it is.
     let saddle = &c.unstable[c.unstable.len() / 2];
     let from = loading
         .iter()
         .filter(|p| !p.inverted)
         .min_by(|a, b| (a.step.delta - saddle.delta).abs().total_cmp(&(b.step.delta - saddle.delta).abs()));
-    let m = stable_or_descend(&model, &plate, E, saddle.clone(), &from.unwrap().step.u).expect("a minimum");
+    let m =
+        ShellProblem::new(&model, &plate, E).stable_or_rest(saddle.clone(), &from.unwrap().step.u).expect("a minimum");
     let energy =
         |s: &Step| model.strain_energy(&s.u).unwrap() + plate.energy(&model.mesh, &s.u, apex_z(&model) - s.delta);
     assert!(m.stable && m.converged && m.delta == saddle.delta);
     assert!(energy(&m) < energy(saddle) - 1e-6 * energy(saddle).abs(), "{} vs {}", energy(&m), energy(saddle));
-    let kept = stable_or_descend(&model, &plate, E, m.clone(), &saddle.u).unwrap();
+    let kept = ShellProblem::new(&model, &plate, E).stable_or_rest(m.clone(), &saddle.u).unwrap();
     assert_eq!(kept.u, m.u);
 }
 
@@ -143,7 +146,7 @@ fn the_adhering_start_is_a_minimum() {
     let lift = crate::fem::stability::LIFT_THRESHOLD;
     for (g, radius) in [(0.028284271247461905, 0.410165), (0.03, 0.419139)] {
         let plate = Plate::new(&model.mesh, e, 1000.0).with_adhesion(g * e * h, 0.1);
-        let s = jump_in(&model, &plate, e, 0.35 * r / 35.0).expect("adheres");
+        let s = ShellProblem::new(&model, &plate, e).jump_in(0.35 * r / 35.0).expect("adheres");
         assert!(s.converged && s.stable && s.delta == 0.0);
         assert!((s.contact.radius / r - radius).abs() < 1e-5, "{g}: r/R {}", s.contact.radius / r);
         assert!(unilaterally_stable(&model, &plate, &s, lift, AdhesiveHold::Free));
@@ -323,4 +326,36 @@ fn a_frictionless_fold_is_bisected_to_the_smallest_step() {
     // Each halving of the bracket costs one step, not a failure retried after every success
     // as well: measured, 92 LU factorisations for the whole loading, 125 with the retry.
     assert!(lus < 108, "{lus} LU factorisations");
+}
+
+#[test]
+fn the_converged_staggered_procedure_has_the_monolithic_equilibrium() {
+    // The thesis' procedure (Section 3.2: adhesionless solve, then the Lennard-Jones forces
+    // of the last gaps as loads, solved again until the passes converge) on a
+    // pre-buckling step, delta/R 0.10 -> 0.11 at gamma = 1e-3 N/mm (R = 15, h = 1, 60 x 3
+    // elements): the same state as the monolithic Newton solve to 1e-6 h in every
+    // displacement and 1e-6 in the plate force. A fixed few passes stop short of it.
+    let (model, plate) = thesis_shell();
+    let plate = plate.with_adhesion(1e-3, 0.1);
+    let problem = ShellProblem::new(&model, &plate, E);
+    let path = crate::fem::indent::load_path(&model, &plate, E, 0.10 * R, 10, 6);
+    let from = path.last().unwrap();
+    assert!(from.converged);
+    let delta = 0.11 * R;
+    let mono = problem.solve_from(delta, from, Options::default());
+    assert!(mono.converged);
+    let stag = problem.staggered_step(delta, from, Passes::Converged);
+    assert_eq!(stag.end, StaggeredEnd::Converged, "{stag:?}");
+    let du = mono.u.iter().zip(&stag.step.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / H;
+    let df = (mono.contact.force - stag.step.contact.force).abs() / mono.contact.force.abs();
+    eprintln!("staggered: {} passes, |du|/h {du:.2e}, |dF|/F {df:.2e}", stag.passes);
+    assert!(du < 1e-6 && df < 1e-6, "|du|/h {du:e}, |dF|/F {df:e}");
+    // The adhesive pull is part of the plate force on both sides.
+    assert!(stag.step.contact.adhesive < 0.0);
+    assert!((stag.step.contact.adhesive - mono.contact.adhesive).abs() < 1e-6 * mono.contact.adhesive.abs());
+    // One pass is not converged: farther from the monolithic state than the converged passes.
+    let one = problem.staggered_step(delta, from, Passes::Fixed(1));
+    assert_eq!((one.end, one.passes), (StaggeredEnd::PassesDone, 1));
+    let du1 = mono.u.iter().zip(&one.step.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / H;
+    assert!(du1 > 100.0 * du.max(1e-12), "one pass {du1:e} vs converged {du:e}");
 }
