@@ -72,6 +72,11 @@ pub struct IndentParams {
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
     #[serde(default)]
     pub hold: map::Hold,
+    /// What counts as the snap-through: `instability` (default, the stability test) or the
+    /// thesis' staggered procedure, `{thesis: {passes: n, first_pass: ...}}`
+    /// (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no loop).
+    #[serde(default, skip_serializing_if = "map::SnapCriterion::is_default")]
+    pub snap: map::SnapCriterion,
     /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
     /// second cycle on twice the meridian elements, run alongside (`Cycles`; default false:
     /// the declared errors of the default mesh, none on other meshes).
@@ -123,7 +128,7 @@ impl IndentParams {
             trace_unstable: unload,
             unload,
             stop_at_buckling: false,
-            snap: Default::default(),
+            snap: self.snap.into(),
         };
         load_unload(model, plate, self.shell.E, opt)
     }
@@ -338,8 +343,8 @@ impl Kind for FemIndent {
         let f_bar = sh.f_bar();
         // W and its error for a complete cycle only (a partial one has no closed integral).
         let w_scale = sh.E * sh.h.powi(3);
-        let closed = |c: &Cycle| if c.complete { c.dissipated() } else { 0.0 };
-        let path_error = if c.complete { c.dissipated_error() } else { 0.0 };
+        let closed = |c: &Cycle| if c.is_closed() { c.dissipated() } else { 0.0 };
+        let path_error = if c.is_closed() { c.dissipated_error() } else { 0.0 };
         let events = cycles.event_errors(closed(c), closed);
         let col = |f: &dyn Fn(&Step) -> f64| rows.iter().map(|r| finite(f(r.step))).collect::<Vec<f64>>();
         let n = rows.len();

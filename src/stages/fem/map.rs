@@ -7,7 +7,7 @@
 
 use super::shell::{self, Imperfection, Integration, MaterialLaw, Stability};
 use crate::fem::contact::Plate;
-use crate::fem::cycle::{CycleOptions, Passes, Snap};
+use crate::fem::cycle::{CycleOptions, FirstPass, Passes, Snap, Staggered};
 use crate::fem::mesh::ShellMesh;
 use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use crate::fem::system::{Base, Model};
@@ -40,17 +40,35 @@ pub enum SnapCriterion {
     /// The state lands on the inverted branch: the drop a displacement-controlled experiment
     /// sees (states given up by the test but held by the energy do not count).
     Landing,
-    /// The thesis' staggered procedure (Section 3.2), its passes iterated to convergence at
-    /// each displacement step; buckling is the first negative slope of F(delta)
-    /// (`fem::cycle::Passes::Converged`). Loading leg only.
-    Thesis,
-    /// The thesis' staggered procedure with this many passes with adhesive loads per
-    /// displacement step (`fem::cycle::Passes::Fixed`).
-    ThesisPasses(u32),
+    /// The thesis' staggered procedure (Section 3.2; `fem::cycle::Staggered`): adhesion as
+    /// loads from the last pass's gaps, buckling the first negative slope of the contact
+    /// force F(delta). Loading leg only.
+    Thesis(ThesisProcedure),
+}
+
+/// The settings of the thesis' staggered procedure (`SnapCriterion::Thesis`).
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(deny_unknown_fields, default)]
+pub struct ThesisProcedure {
+    /// Passes with adhesive loads per displacement step (default: until the displacements
+    /// change by less than 1e-10 h, at most 200).
+    pub passes: Option<u32>,
+    /// What each step's first solve carries: `without_adhesion` (default, as Section 3.2
+    /// writes it) or `last_loads` (the last step's adhesive loads).
+    pub first_pass: FirstPassLoads,
+}
+
+/// `fem::cycle::FirstPass`.
+#[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, Default, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+pub enum FirstPassLoads {
+    #[default]
+    WithoutAdhesion,
+    LastLoads,
 }
 
 impl SnapCriterion {
-    fn is_default(&self) -> bool {
+    pub(super) fn is_default(&self) -> bool {
         *self == SnapCriterion::Instability
     }
 }
@@ -60,8 +78,13 @@ impl From<SnapCriterion> for Snap {
         match c {
             SnapCriterion::Instability => Snap::Instability,
             SnapCriterion::Landing => Snap::Landing,
-            SnapCriterion::Thesis => Snap::Staggered(Passes::Converged),
-            SnapCriterion::ThesisPasses(n) => Snap::Staggered(Passes::Fixed(n)),
+            SnapCriterion::Thesis(t) => Snap::Staggered(Staggered {
+                passes: t.passes.map_or(Passes::Converged, Passes::Fixed),
+                first: match t.first_pass {
+                    FirstPassLoads::WithoutAdhesion => FirstPass::WithoutAdhesion,
+                    FirstPassLoads::LastLoads => FirstPass::LastLoads,
+                },
+            }),
         }
     }
 }
@@ -116,8 +139,8 @@ pub struct MapModel {
     pub bisections: u32,
     /// What holds touching adhesive points in the stability test.
     pub hold: Hold,
-    /// What counts as a snap-through: `instability` (default), `landing`, `thesis` or
-    /// `{thesis_passes: n}` (`SnapCriterion`).
+    /// What counts as a snap-through: `instability` (default), `landing` or
+    /// `{thesis: {passes: n, first_pass: ...}}` (`SnapCriterion`).
     #[serde(skip_serializing_if = "SnapCriterion::is_default")]
     pub snap: SnapCriterion,
     /// Stability test: `lift_threshold` (default) or `tangent` (`shell::Stability`).
@@ -175,10 +198,10 @@ fn max_cuts(base_over_r: f64) -> u32 {
 impl MapModel {
     pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
         self.imperfection.validate(e, "model.");
-        if let SnapCriterion::ThesisPasses(n) = self.snap {
+        if let SnapCriterion::Thesis(ThesisProcedure { passes: Some(n), .. }) = self.snap {
             if !(1..=crate::fem::cycle::MAX_PASSES).contains(&n) {
                 e.push(FieldError::new(
-                    "model.snap.thesis_passes",
+                    "model.snap.thesis.passes",
                     format!("passes per step must lie in 1..={}, got {n}", crate::fem::cycle::MAX_PASSES),
                 ));
             }

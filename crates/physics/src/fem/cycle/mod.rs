@@ -20,7 +20,9 @@ mod loading;
 mod staggered;
 mod unloading;
 
-pub use staggered::{Passes, StaggeredEnd, StaggeredStep, MAX_PASSES, SLOPE_TOLERANCE, STAGGERED_TOLERANCE};
+pub use staggered::{
+    FirstPass, Passes, Staggered, StaggeredEnd, StaggeredStep, MAX_PASSES, SLOPE_TOLERANCE, STAGGERED_TOLERANCE,
+};
 
 use loading::Loading;
 use unloading::Unloading;
@@ -75,7 +77,7 @@ pub enum Snap {
     /// The thesis' own procedure (Section 3.2, `staggered`): adhesion applied as loads
     /// from the last pass's gaps, the passes per step as given, and the snap the first
     /// negative slope of F(delta). Runs the loading leg only.
-    Staggered(Passes),
+    Staggered(Staggered),
 }
 
 impl Snap {
@@ -140,6 +142,12 @@ pub struct Cycle {
 }
 
 impl Cycle {
+    /// Every step converged and the cycle came back (an unloading leg): its work is a
+    /// closed integral. (The staggered procedure runs the loading leg only.)
+    pub fn is_closed(&self) -> bool {
+        self.complete && self.points.iter().any(|p| p.leg == Leg::Unloading)
+    }
+
     pub fn dissipated(&self) -> f64 {
         self.work_loading - self.work_unloading
     }
@@ -229,8 +237,8 @@ impl ShellProblem<'_> {
     /// the options end the cycle there, the unloading leg with its snap-back
     /// (`unloading`).
     pub fn load_unload(&self, opt: CycleOptions) -> Cycle {
-        if let Snap::Staggered(passes) = opt.snap {
-            let (points, buckling, complete) = self.staggered_loading(&opt, passes);
+        if let Snap::Staggered(procedure) = opt.snap {
+            let (points, buckling, complete) = self.staggered_loading(&opt, procedure);
             return Cycle { work_loading: work(&points), points, buckling, complete, ..Default::default() };
         }
         let mut loading = Loading::new(self, opt, self.cycle_start(opt.delta_max / opt.steps as f64));

@@ -7,7 +7,9 @@
 //! negative slope of the displacement-controlled F(delta) curve (Section 3.1).
 //!
 //! Model: at each displacement step, pass 0 solves the shell with contact and friction but
-//! without adhesion (Newton from the last step's state); each pass k >= 1 freezes the
+//! without adhesion (Newton from the last step's state; `FirstPass::LastLoads`: under the
+//! last step's adhesive loads instead, the common reading of a staggered scheme); each
+//! pass k >= 1 freezes the
 //! Lennard-Jones forces at the gaps of pass k - 1 as dead loads (`contact::FrozenAdhesion`)
 //! and solves the shell again (Newton from pass k - 1, the friction anchors of the last
 //! step). `Passes::Fixed(n)` stops after n such passes; `Passes::Converged` when the
@@ -17,8 +19,12 @@
 //! that a converged staggered state is a monolithic equilibrium and the two schemes differ
 //! only where the passes stop early or the frozen loads change the path.
 //!
-//! F(delta) is the plate force of each state: contact pressure plus the frozen adhesive
-//! pull of its last pass. A structural solve that fails is taken again at half the step
+//! F(delta) is the contact force of each state, the plate's reaction to the pressure: in
+//! the thesis' scheme the adhesive forces are nodal loads on the shell, not forces of the
+//! plate, so that the rigid plate's reaction is the contact force alone (Section 3.3: "the
+//! contact force increases with indentation until a buckling instability occurs"). The net
+//! force (contact plus the frozen adhesive pull) is what the state reports, as everywhere;
+//! with strong adhesion it falls while the adhesive annulus grows, with no snap. A structural solve that fails is taken again at half the step
 //! (as the monolithic leg does); one that fails at the smallest step has passed the
 //! structure's limit point under its frozen loads, and the state lands where an energy
 //! descent of the loaded structure leads (`ShellProblem::jump_to_inverted`), as a damped
@@ -38,6 +44,25 @@ pub enum Passes {
     Converged,
     /// This many structural solves with the adhesive loads after the adhesionless one.
     Fixed(u32),
+}
+
+/// What the first structural solve of a displacement step carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FirstPass {
+    /// No adhesion, as Section 3.2 writes it ("first, a prescribed displacement delta is
+    /// applied ... without considering adhesion").
+    #[default]
+    WithoutAdhesion,
+    /// The adhesive loads of the last step's last pass (adhesion lagging one step behind
+    /// the structure: the common staggered scheme).
+    LastLoads,
+}
+
+/// The thesis' staggered procedure: passes per step and what the first one carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Staggered {
+    pub passes: Passes,
+    pub first: FirstPass,
 }
 
 /// Largest change of any displacement between two passes, in units of h, at which
@@ -74,65 +99,83 @@ pub struct StaggeredStep {
     /// Largest change of a displacement in the last pass, over h.
     pub change: f64,
     pub end: StaggeredEnd,
+    /// The adhesive loads of its last pass (none without adhesion).
+    pub loads: Option<Arc<FrozenAdhesion>>,
+}
+
+/// The compressive contact force of `s` (its plate force without the adhesive pull).
+fn contact_force(s: &Step) -> f64 {
+    s.contact.force - s.contact.adhesive
 }
 
 impl ShellProblem<'_> {
-    /// The plate with the adhesive forces at displacements `u` frozen as loads instead of
-    /// the live law (`contact::FrozenAdhesion`); the plate without adhesion if it has none.
-    pub fn frozen_plate(&self, delta: f64, u: &[f64]) -> Plate {
-        let structure = Plate { adhesion: None, frozen: None, ..self.plate.clone() };
-        let frozen = self
-            .plate
-            .adhesion
-            .map(|ad| Arc::new(FrozenAdhesion::at(&ad, &self.model.mesh, u, apex_z(self.model) - delta)));
-        Plate { frozen, ..structure }
+    /// The adhesive forces of the plate's law at displacements `u`, the plate at `delta`
+    /// (none if it has no adhesion).
+    pub fn adhesive_loads(&self, delta: f64, u: &[f64]) -> Option<Arc<FrozenAdhesion>> {
+        let z_plate = apex_z(self.model) - delta;
+        self.plate.adhesion.map(|ad| Arc::new(FrozenAdhesion::at(&ad, &self.model.mesh, u, z_plate)))
     }
 
-    /// One displacement step to `delta` from the converged state `from`, by the thesis'
-    /// staggered passes (module doc).
-    pub fn staggered_step(&self, delta: f64, from: &Step, passes: Passes) -> StaggeredStep {
+    /// The plate without its live adhesion, carrying `loads` as dead loads instead.
+    pub fn structure_plate(&self, loads: Option<Arc<FrozenAdhesion>>) -> Plate {
+        Plate { adhesion: None, frozen: loads, ..self.plate.clone() }
+    }
+
+    /// One displacement step to `delta` from the converged state `from` by the thesis'
+    /// staggered passes (module doc), the first solve under `first_loads` (none: without
+    /// adhesion).
+    pub fn staggered_step(
+        &self,
+        delta: f64,
+        from: &Step,
+        first_loads: Option<Arc<FrozenAdhesion>>,
+        passes: Passes,
+    ) -> StaggeredStep {
         let h = self.model.mesh.thickness;
-        let structure_plate = Plate { adhesion: None, frozen: None, ..self.plate.clone() };
-        let first = self.with_plate(&structure_plate).solve_from(delta, from, Options::default());
-        let failed = |step: Step, passes| StaggeredStep {
+        let first_plate = self.structure_plate(first_loads.clone());
+        let first = self.with_plate(&first_plate).solve_from(delta, from, Options::default());
+        let failed = |step: Step, passes, loads| StaggeredStep {
             step,
             passes,
             change: f64::INFINITY,
             end: StaggeredEnd::StructureFailed,
+            loads,
         };
         if !first.converged {
-            return failed(first, 0);
+            return failed(first, 0, first_loads);
         }
         if self.plate.adhesion.is_none() {
-            return StaggeredStep { step: first, passes: 0, change: 0.0, end: StaggeredEnd::Converged };
+            return StaggeredStep { step: first, passes: 0, change: 0.0, end: StaggeredEnd::Converged, loads: None };
         }
         let limit = match passes {
             Passes::Converged => MAX_PASSES,
             Passes::Fixed(n) => n,
         };
         let mut s = first;
+        let mut loads = first_loads;
         let mut change = f64::INFINITY;
         for pass in 1..=limit {
-            let loaded_plate = self.frozen_plate(delta, &s.u);
+            loads = self.adhesive_loads(delta, &s.u);
+            let loaded_plate = self.structure_plate(loads.clone());
             let loaded = self.with_plate(&loaded_plate);
             let mut next = loaded.solve_at(delta, &s.u, &from.contact.stick, Options::default());
             if !next.converged {
                 next = loaded.solve_from(delta, from, Options::default());
             }
             if !next.converged {
-                return failed(next, pass);
+                return failed(next, pass, loads);
             }
             change = next.u.iter().zip(&s.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / h;
             s = next;
             if passes == Passes::Converged && change <= STAGGERED_TOLERANCE {
-                return StaggeredStep { step: s, passes: pass, change, end: StaggeredEnd::Converged };
+                return StaggeredStep { step: s, passes: pass, change, end: StaggeredEnd::Converged, loads };
             }
         }
         let end = match passes {
             Passes::Converged => StaggeredEnd::PassLimit,
             Passes::Fixed(_) => StaggeredEnd::PassesDone,
         };
-        StaggeredStep { step: s, passes: limit, change, end }
+        StaggeredStep { step: s, passes: limit, change, end, loads }
     }
 
     /// The loading leg of the staggered procedure from the reference state, in the steps
@@ -143,8 +186,15 @@ impl ShellProblem<'_> {
     pub(super) fn staggered_loading(
         &self,
         opt: &CycleOptions,
-        passes: Passes,
+        procedure: Staggered,
     ) -> (Vec<CyclePoint>, Option<Jump>, bool) {
+        let passes = procedure.passes;
+        // The loads the next step's first solve carries.
+        let mut carried: Option<Arc<FrozenAdhesion>> = None;
+        let first_loads = |carried: &Option<Arc<FrozenAdhesion>>| match procedure.first {
+            FirstPass::WithoutAdhesion => None,
+            FirstPass::LastLoads => carried.clone(),
+        };
         let base = opt.delta_max / opt.steps as f64;
         let mut cur = self.reference_state();
         let mut points = vec![CyclePoint { step: cur.clone(), leg: Leg::Loading, inverted: false }];
@@ -152,7 +202,7 @@ impl ShellProblem<'_> {
         let (mut dd, mut cuts) = (base, 0);
         while cur.delta < opt.delta_max * (1.0 - 1e-12) {
             let target = (cur.delta + dd).min(opt.delta_max);
-            let mut next = self.staggered_step(target, &cur, passes);
+            let mut next = self.staggered_step(target, &cur, first_loads(&carried), passes);
             if next.end == StaggeredEnd::StructureFailed {
                 if cuts < opt.max_cuts {
                     cuts += 1;
@@ -161,23 +211,25 @@ impl ShellProblem<'_> {
                 }
                 // Past the structure's limit point under the last loads: where it comes to
                 // rest, then the adhesion iterated there.
-                let loaded_plate = self.frozen_plate(cur.delta, &cur.u);
+                let loaded_plate = self.structure_plate(next.loads.clone().or_else(|| carried.clone()));
                 let Some(landed) =
                     self.with_plate(&loaded_plate).jump_to_inverted(&Step { delta: target, ..cur.clone() })
                 else {
                     points.push(CyclePoint { step: next.step, leg: Leg::Loading, inverted: false });
                     return (points, buckling, false);
                 };
-                next = self.staggered_step(target, &landed, passes);
+                next = self.staggered_step(target, &landed, first_loads(&carried), passes);
                 if next.end == StaggeredEnd::StructureFailed {
                     points.push(CyclePoint { step: next.step, leg: Leg::Loading, inverted: true });
                     return (points, buckling, false);
                 }
             }
+            carried = next.loads;
             let mut s = next.step;
             s.stable = s.converged;
             let inverted = self.is_inverted(&s);
-            let drop = s.contact.force < cur.contact.force - SLOPE_TOLERANCE * cur.contact.force.abs();
+            let (before, after) = (contact_force(&cur), contact_force(&s));
+            let drop = after < before - SLOPE_TOLERANCE * before.abs();
             if buckling.is_none() && drop && cur.delta > 0.0 {
                 buckling = Some(Jump {
                     delta: s.delta,

@@ -344,7 +344,7 @@ fn the_converged_staggered_procedure_has_the_monolithic_equilibrium() {
     let delta = 0.11 * R;
     let mono = problem.solve_from(delta, from, Options::default());
     assert!(mono.converged);
-    let stag = problem.staggered_step(delta, from, Passes::Converged);
+    let stag = problem.staggered_step(delta, from, None, Passes::Converged);
     assert_eq!(stag.end, StaggeredEnd::Converged, "{stag:?}");
     let du = mono.u.iter().zip(&stag.step.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / H;
     let df = (mono.contact.force - stag.step.contact.force).abs() / mono.contact.force.abs();
@@ -354,8 +354,40 @@ fn the_converged_staggered_procedure_has_the_monolithic_equilibrium() {
     assert!(stag.step.contact.adhesive < 0.0);
     assert!((stag.step.contact.adhesive - mono.contact.adhesive).abs() < 1e-6 * mono.contact.adhesive.abs());
     // One pass is not converged: farther from the monolithic state than the converged passes.
-    let one = problem.staggered_step(delta, from, Passes::Fixed(1));
+    let one = problem.staggered_step(delta, from, None, Passes::Fixed(1));
     assert_eq!((one.end, one.passes), (StaggeredEnd::PassesDone, 1));
     let du1 = mono.u.iter().zip(&one.step.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / H;
     assert!(du1 > 100.0 * du.max(1e-12), "one pass {du1:e} vs converged {du:e}");
+}
+
+#[test]
+fn without_adhesion_the_thesis_procedure_snaps_at_the_step_past_the_limit_point() {
+    // Without adhesion the staggered procedure is one structural solve per step, and its
+    // first negative slope of F(delta) must lie at the first step past the limit point that
+    // the monolithic tangent criterion bisects for: bracketed by the two steps, its force
+    // before the drop at most the limit point's and within 10 % of it (apex force 0.05 F_c, 60 x 3 elements,
+    // 30 steps to delta/R = 0.3).
+    let (model, plate) = thesis_shell();
+    let model = model.with_apex_force(0.05 * E * H.powi(3) / R);
+    let problem = ShellProblem::new(&model, &plate, E);
+    let opt = CycleOptions {
+        criterion: Criterion::Tangent,
+        unload: false,
+        stop_at_buckling: true,
+        trace_unstable: false,
+        ..options(0.3)
+    };
+    let local = problem.load_unload(opt).buckling.expect("the imperfect shell snaps");
+    let procedure = Staggered { passes: Passes::Converged, first: FirstPass::WithoutAdhesion };
+    let thesis = problem.load_unload(CycleOptions { snap: Snap::Staggered(procedure), ..opt });
+    let b = thesis.buckling.expect("a negative slope");
+    let step = 0.3 * R / 30.0;
+    assert!(thesis.complete);
+    assert!(b.delta_stable <= local.delta_stable && local.delta_stable < b.delta, "{b:?} vs {local:?}");
+    // (A step that fails past the fold is halved: the bracket is at most one step.)
+    assert!(b.delta - b.delta_stable <= step * (1.0 + 1e-9), "{b:?}");
+    assert!(b.force_before <= local.force_before * (1.0 + 1e-9), "{} vs {}", b.force_before, local.force_before);
+    assert!(b.force_before > 0.9 * local.force_before, "{} vs {}", b.force_before, local.force_before);
+    // The loading leg only: no loop.
+    assert!(!thesis.is_closed() && thesis.points.iter().all(|p| p.leg == Leg::Loading));
 }
