@@ -118,10 +118,10 @@ impl Kind for FemBuckling {
         let mut e = Vec::new();
         let m = p.point_model();
         m.validate(&mut e);
-        if p.dissipation && matches!(m.snap, SnapCriterion::Thesis(_)) {
+        if p.dissipation && matches!(m.snap, SnapCriterion::Thesis(_) | SnapCriterion::Energy) {
             e.push(FieldError::new(
                 "dissipation",
-                "the thesis' staggered procedure (`snap: {thesis: ...}`) runs the loading leg only: set `dissipation: false`",
+                "`snap: {thesis: ...}` and `snap: energy` run the loading leg only: set `dissipation: false`",
             ));
         }
         e

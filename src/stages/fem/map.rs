@@ -44,6 +44,10 @@ pub enum SnapCriterion {
     /// loads from the last pass's gaps, buckling the first negative slope of the contact
     /// force F(delta). Loading leg only.
     Thesis(ThesisProcedure),
+    /// The energy balance Eq. 3.7 estimates (`fem::cycle::Snap::Energy`): the inverted
+    /// state stores less total potential energy than the adhered flattened one at some
+    /// delta up to delta_max, or the flattened branch ends. Loading leg only.
+    Energy,
 }
 
 /// The settings of the thesis' staggered procedure (`SnapCriterion::Thesis`).
@@ -78,6 +82,7 @@ impl From<SnapCriterion> for Snap {
         match c {
             SnapCriterion::Instability => Snap::Instability,
             SnapCriterion::Landing => Snap::Landing,
+            SnapCriterion::Energy => Snap::Energy,
             SnapCriterion::Thesis(t) => Snap::Staggered(Staggered {
                 passes: t.passes.map_or(Passes::Converged, Passes::Fixed),
                 first: match t.first_pass {

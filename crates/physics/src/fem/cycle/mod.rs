@@ -15,6 +15,7 @@
 //! hysteresis loop area W = closed integral of F d(delta) (zero without a jump: the model is
 //! elastic and frictionless).
 
+mod energy;
 mod jump;
 mod loading;
 mod staggered;
@@ -78,6 +79,10 @@ pub enum Snap {
     /// from the last pass's gaps, the passes per step as given, and the snap the first
     /// negative slope of F(delta). Runs the loading leg only.
     Staggered(Staggered),
+    /// The energy balance (`energy`): the snap where the inverted state lies lower in total
+    /// potential energy than the adhered flattened one, or where the flattened branch ends.
+    /// Runs the loading leg only.
+    Energy,
 }
 
 impl Snap {
@@ -237,6 +242,9 @@ impl ShellProblem<'_> {
     /// the options end the cycle there, the unloading leg with its snap-back
     /// (`unloading`).
     pub fn load_unload(&self, opt: CycleOptions) -> Cycle {
+        if opt.snap == Snap::Energy {
+            return self.energy_loading(opt);
+        }
         if let Snap::Staggered(procedure) = opt.snap {
             let (points, buckling, complete) = self.staggered_loading(&opt, procedure);
             return Cycle { work_loading: work(&points), points, buckling, complete, ..Default::default() };

@@ -391,3 +391,41 @@ fn without_adhesion_the_thesis_procedure_snaps_at_the_step_past_the_limit_point(
     // The loading leg only: no loop.
     assert!(!thesis.is_closed() && thesis.points.iter().all(|p| p.leg == Leg::Loading));
 }
+
+#[test]
+fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
+    // The energy criterion's gamma_c is, to first order in gamma, the stored-energy gap
+    // between the flattened and the inverted adhesionless states at delta_max over their
+    // gap in contact area, (U_flat - U_inv) / (A_flat - A_inv): the adhesive energy of a
+    // state in contact is -gamma times its area, whatever g0. Measured on the thesis'
+    // default mesh at h/R = 0.06: 3.17e-3 E h by this balance, 3.28e-3 (g0 = 0.1 mm) and
+    // 3.07e-3 (0.05 mm) by the criterion. Here (60 x 3 elements, perfect shell, to
+    // delta/R = 0.3) at 0.7 and 1.4 times the balance, with g0 = 0.1 and 0.05: the shell
+    // snaps below it and not above, at either range.
+    let (model, plate) = thesis_shell();
+    let problem = ShellProblem::new(&model, &plate, E);
+    let opt = CycleOptions {
+        criterion: Criterion::Tangent,
+        unload: false,
+        stop_at_buckling: true,
+        trace_unstable: false,
+        snap: Snap::Energy,
+        ..options(0.3)
+    };
+    let path = crate::fem::indent::load_path(&model, &plate, E, 0.3 * R, 30, 6);
+    let flat = path.last().unwrap();
+    assert!(flat.converged && (flat.delta - 0.3 * R).abs() < 1e-9);
+    let inv = problem.jump_to_inverted(flat).expect("an inverted state at delta_max");
+    let (pf, pi) = (problem.total_energy(flat).unwrap(), problem.total_energy(&inv).unwrap());
+    let balance = (pf - pi) / (flat.contact.area - inv.contact.area);
+    assert!(pf > pi && balance > 0.0);
+    eprintln!("first-order balance gamma/(E h) = {:.3e}", balance / (E * H));
+    for g0 in [0.1, 0.05] {
+        for (factor, snaps) in [(0.7, true), (1.4, false)] {
+            let adhering = plate.clone().with_adhesion(factor * balance, g0);
+            let c = ShellProblem::new(&model, &adhering, E).load_unload(opt);
+            assert!(c.complete, "g0 {g0}, {factor} x balance");
+            assert_eq!(c.buckling.is_some(), snaps, "g0 {g0}, {factor} x balance: {:?}", c.buckling);
+        }
+    }
+}

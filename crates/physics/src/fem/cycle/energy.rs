@@ -1,0 +1,85 @@
+//! The energy criterion of the snap (the balance that thesis Eq. 3.7 estimates): the shell
+//! snaps where the inverted state stores less total potential energy than the adhered
+//! flattened state at the same plate displacement, or where the flattened branch ends.
+//!
+//! Model: Pi(state) = strain energy (with the imperfection's dead load) + penalty energy of
+//! the contact + adhesive energy of the Lennard-Jones law (`Plate::energy`; friction is
+//! not a potential and stores nothing). The flattened branch is loaded monolithically as
+//! under `Snap::Instability`; if it loses stability before delta_max, that is the snap.
+//! Otherwise the inverted state at delta_max is found where a damped jump from the
+//! flattened one comes to rest (`ShellProblem::jump_to_inverted`); if its Pi is lower, the
+//! shell snaps, at the first loading state whose inverted neighbour is lower (found by
+//! bisection over the loading states: Pi_flat - Pi_inv rises with delta, measured in
+//! docs/shell.md, "The snap criteria").
+//!
+//! Why: as g0 -> 0 the adhesive energy tends to -dgamma times the area in contact, whatever
+//! the law's range, so that the balance -dgamma A_flat + U_flat = -dgamma A_inv + U_inv
+//! has a limit; to first order in dgamma, gamma_c = (U_flat - U_inv) / (A_flat - A_inv)
+//! at delta_max. The barrier against lifting a touching interior off the plate (the local
+//! criterion) is a strength of order dgamma / g0 instead, and moves with g0.
+
+use super::{Cycle, CycleOptions, Jump, Snap};
+use crate::fem::indent::{apex_z, Step};
+use crate::fem::problem::ShellProblem;
+
+impl ShellProblem<'_> {
+    /// The total potential energy Pi of the state `s` (module doc); None if an element is
+    /// inverted.
+    pub fn total_energy(&self, s: &Step) -> Option<f64> {
+        let z_plate = apex_z(self.model) - s.delta;
+        Some(self.model.strain_energy(&s.u)? + self.plate.energy(&self.model.mesh, &s.u, z_plate))
+    }
+
+    /// The inverted state at the delta of the flattened state `flat`, if it lies lower in
+    /// Pi than `flat`.
+    fn lower_inverted(&self, flat: &Step) -> Option<Step> {
+        let inv = self.jump_to_inverted(flat)?;
+        (self.total_energy(&inv)? < self.total_energy(flat)?).then_some(inv)
+    }
+
+    /// The loading leg under the energy criterion (module doc), stopped at the snap.
+    pub(super) fn energy_loading(&self, opt: CycleOptions) -> Cycle {
+        let local = CycleOptions { snap: Snap::Instability, stop_at_buckling: true, unload: false, ..opt };
+        let mut cycle = self.load_unload(local);
+        if let Some(b) = cycle.buckling.as_mut() {
+            // The flattened branch ends: a snap under this criterion too, wherever it lands.
+            b.delta_after = b.delta;
+            return cycle;
+        }
+        if !cycle.complete {
+            return cycle;
+        }
+        let flat: Vec<usize> = (0..cycle.points.len())
+            .filter(|&i| cycle.points[i].step.converged && cycle.points[i].step.delta > 0.0)
+            .collect();
+        let Some(&last) = flat.last() else { return cycle };
+        let Some(mut inv) = self.lower_inverted(&cycle.points[last].step) else { return cycle };
+        // Bisection over the loading states for the first whose inverted state is lower.
+        let (mut lo, mut hi) = (0usize, flat.len() - 1);
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            match self.lower_inverted(&cycle.points[flat[mid]].step) {
+                Some(i) => {
+                    hi = mid;
+                    inv = i;
+                }
+                None => lo = mid,
+            }
+        }
+        let at = &cycle.points[flat[hi]].step;
+        let before = &cycle.points[flat[lo]].step;
+        cycle.buckling = Some(Jump {
+            delta: at.delta,
+            force_before: at.contact.force,
+            delta_stable: before.delta,
+            force_unstable: at.contact.force,
+            force_after: inv.contact.force,
+            radius_before: at.contact.radius,
+            pull_before: at.contact.adhesive,
+            delta_after: at.delta,
+        });
+        cycle.points.truncate(flat[hi] + 1);
+        cycle.work_loading = super::work(&cycle.points);
+        cycle
+    }
+}
