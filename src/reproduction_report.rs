@@ -153,14 +153,18 @@ fn ancestors(p: &Pipeline, name: &str) -> BTreeSet<String> {
 const STYLE: &str = "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}\
 h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}\
 table{border-collapse:collapse;font-size:.85em;margin:.5em 0}td,th{border:1px solid #ddd;padding:.2em .5em;vertical-align:top}\
-th{background:#f4f4f4}.reproduced{color:#176b2c;font-weight:600}.differs{color:#9a5b00;font-weight:600}\
+th{background:#f4f4f4}.reproduced{color:#176b2c;font-weight:600}.differs{color:#9a5b00;font-weight:600}.calibrated{color:#555;font-weight:600}\
 .regressed{color:#b00020;font-weight:700}figure{margin:1.5em 0;border:1px solid #eee;padding:.5em}\
 figure svg{max-width:100%;height:auto}figcaption{font-size:.9em;color:#444}.summary{font-size:1.2em;padding:.6em;background:#f6f8fa}\
 .small{font-size:.8em;color:#555}nav a{margin-right:1em}";
 
 fn verdict_cell(c: &ClaimRow) -> String {
-    let class = if c.verdict == "reproduced" {
-        "reproduced"
+    let class = if c.verdict == "reproduced" || c.verdict == "calibrated" {
+        if c.verdict == "calibrated" {
+            "calibrated"
+        } else {
+            "reproduced"
+        }
     } else if c.expected == "differs" {
         "differs"
     } else {
@@ -244,8 +248,9 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     // Claims.
     let n = claims.len();
     let reproduced = claims.iter().filter(|c| c.verdict == "reproduced").count();
+    let calibrated = claims.iter().filter(|c| c.verdict == "calibrated").count();
     let explained = claims.iter().filter(|c| c.verdict == "differs" && c.expected == "differs").count();
-    let regressed = n - reproduced - explained;
+    let regressed = n - reproduced - calibrated - explained;
     let figures: Vec<_> = p.stages.iter().filter(|s| s.kind == "figure").collect();
     let mut chapters: BTreeMap<String, Vec<_>> = BTreeMap::new();
     for f in &figures {
@@ -271,7 +276,8 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     h.push_str("<a href=\"#cost\">Cost</a><a href=\"#graph\">Stages</a><a href=\"#provenance\">Provenance</a></nav>\n");
     let _ = writeln!(
         h,
-        "<p class=\"summary\" id=\"verdict\">{reproduced} of {n} thesis claims reproduced, {explained} differ (explained){}.</p>",
+        "<p class=\"summary\" id=\"verdict\">{reproduced} of {n} thesis claims reproduced, {}{explained} differ (explained){}.</p>",
+        if calibrated > 0 { format!("{calibrated} calibrated (the model tuned to them), ") } else { String::new() },
         if regressed > 0 { format!(", <span class=\"regressed\">{regressed} regressed</span>") } else { String::new() }
     );
     h.push_str("<h2 id=\"claims\">The thesis' claims</h2>\n<p>Each claim is a stage of the pipeline that reads a published table; the verdict compares the quantity with the thesis' value and the tolerance its text implies. A claim that differs carries its reason.</p>\n");

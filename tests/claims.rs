@@ -89,6 +89,27 @@ fn verdicts_are_counted_and_tabled() {
 }
 
 #[test]
+fn a_calibrated_claim_is_counted_apart_and_regresses_if_its_calibration_breaks() {
+    // Recorded as calibrated (the model tuned to it), a claim that holds reads `calibrated`,
+    // not `reproduced`, in the table and the verdict line; one that stops holding is a
+    // regression, as a reproduced one is.
+    let s = Scratch::new("claims-calibrated");
+    s.write("p.yaml", &pipeline(0.01, "calibrated"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("1 of 3 thesis claims reproduced, 1 calibrated (the model tuned to them), 1 differ (explained)"),
+        "{err}"
+    );
+    let df = repro::pipeline::table::read_parquet(&s.path("tables/claims.parquet")).unwrap();
+    assert_eq!(strings(&df, "verdict"), ["calibrated", "differs", "reproduced"]);
+    s.write("p.yaml", &pipeline(0.0001, "calibrated"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 5, "{err}");
+    assert!(err.contains("1 regressed"), "{err}");
+}
+
+#[test]
 fn a_claim_that_stops_holding_is_a_regression() {
     let s = Scratch::new("claims-regression");
     s.write("p.yaml", &pipeline(0.01, "reproduced"));

@@ -170,12 +170,14 @@ pub struct Independent {
     pub source: String,
 }
 
-/// The verdict of a claim: `reproduced` (the quantity meets the thesis' condition) or
+/// The verdict of a claim: `reproduced` (the quantity meets the thesis' condition),
+/// `calibrated` (it meets it because the model was tuned to that value: no evidence) or
 /// `differs`.
 #[derive(Serialize, Deserialize, JsonSchema, Clone, Copy, PartialEq, Eq, Debug)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
     Reproduced,
+    Calibrated,
     Differs,
 }
 
@@ -183,6 +185,7 @@ impl Verdict {
     fn as_str(self) -> &'static str {
         match self {
             Verdict::Reproduced => "reproduced",
+            Verdict::Calibrated => "calibrated",
             Verdict::Differs => "differs",
         }
     }
@@ -345,8 +348,13 @@ impl Kind for Claim {
 
     fn run(p: &ClaimParams, inputs: &Inputs) -> Result<Output> {
         let value = measure(&p.quantity, inputs).with_context(|| format!("claim `{}`", p.id))?;
-        let verdict = if p.thesis.holds(value) { Verdict::Reproduced } else { Verdict::Differs };
-        let regression = p.expect == Verdict::Reproduced && verdict == Verdict::Differs;
+        // A calibrated claim holds by construction: it says so, not "reproduced".
+        let verdict = match (p.thesis.holds(value), p.expect) {
+            (false, _) => Verdict::Differs,
+            (true, Verdict::Calibrated) => Verdict::Calibrated,
+            (true, _) => Verdict::Reproduced,
+        };
+        let regression = p.expect != Verdict::Differs && verdict == Verdict::Differs;
         let (ind_value, ind_source) =
             p.independent.as_ref().map_or((0.0, String::new()), |i| (i.value, i.source.clone()));
         let table = Table::new()
@@ -428,9 +436,14 @@ impl Kind for Claims {
         let (verdicts, expected, ids) = (text("verdict")?, text("expected")?, text("id")?);
         let n = verdicts.len();
         let reproduced = verdicts.iter().filter(|v| *v == "reproduced").count();
+        let calibrated = verdicts.iter().filter(|v| *v == "calibrated").count();
         let explained = verdicts.iter().zip(&expected).filter(|(v, e)| *v == "differs" && *e == "differs").count();
-        let regressed = n - reproduced - explained;
-        let mut line = format!("{reproduced} of {n} thesis claims reproduced, {explained} differ (explained)");
+        let regressed = n - reproduced - calibrated - explained;
+        let mut line = format!("{reproduced} of {n} thesis claims reproduced, ");
+        if calibrated > 0 {
+            line.push_str(&format!("{calibrated} calibrated (the model tuned to them), "));
+        }
+        line.push_str(&format!("{explained} differ (explained)"));
         if regressed > 0 {
             line.push_str(&format!(", {regressed} regressed"));
         }

@@ -65,6 +65,19 @@ fn options(delta_max: f64) -> CycleOptions {
     }
 }
 
+/// A loading leg to delta/R = 0.3 under the tangent criterion that stops at the snap as
+/// `snap` defines it.
+fn snap_probe(snap: Snap) -> CycleOptions {
+    CycleOptions {
+        criterion: Criterion::Tangent,
+        unload: false,
+        stop_at_buckling: true,
+        trace_unstable: false,
+        snap,
+        ..options(0.3)
+    }
+}
+
 fn fbar(f: f64) -> f64 {
     f * R / (E * H.powi(3))
 }
@@ -365,18 +378,12 @@ fn without_adhesion_the_thesis_procedure_snaps_at_the_step_past_the_limit_point(
     // Without adhesion the staggered procedure is one structural solve per step, and its
     // first negative slope of F(delta) must lie at the first step past the limit point that
     // the monolithic tangent criterion bisects for: bracketed by the two steps, its force
-    // before the drop at most the limit point's and within 10 % of it (apex force 0.05 F_c, 60 x 3 elements,
-    // 30 steps to delta/R = 0.3).
+    // before the drop at most the limit point's and within 10 % of it (apex force 0.05 F_c,
+    // 60 x 3 elements, 30 steps to delta/R = 0.3).
     let (model, plate) = thesis_shell();
     let model = model.with_apex_force(0.05 * E * H.powi(3) / R);
     let problem = ShellProblem::new(&model, &plate, E);
-    let opt = CycleOptions {
-        criterion: Criterion::Tangent,
-        unload: false,
-        stop_at_buckling: true,
-        trace_unstable: false,
-        ..options(0.3)
-    };
+    let opt = snap_probe(Snap::Instability);
     let local = problem.load_unload(opt).buckling.expect("the imperfect shell snaps");
     let procedure = Staggered { passes: Passes::Converged, first: FirstPass::WithoutAdhesion };
     let thesis = problem.load_unload(CycleOptions { snap: Snap::Staggered(procedure), ..opt });
@@ -404,14 +411,7 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
     // snaps below it and not above, at either range.
     let (model, plate) = thesis_shell();
     let problem = ShellProblem::new(&model, &plate, E);
-    let opt = CycleOptions {
-        criterion: Criterion::Tangent,
-        unload: false,
-        stop_at_buckling: true,
-        trace_unstable: false,
-        snap: Snap::Energy,
-        ..options(0.3)
-    };
+    let opt = snap_probe(Snap::Energy);
     let path = crate::fem::indent::load_path(&model, &plate, E, 0.3 * R, 30, 6);
     let flat = path.last().unwrap();
     assert!(flat.converged && (flat.delta - 0.3 * R).abs() < 1e-9);
