@@ -395,6 +395,12 @@ fn main() -> ExitCode {
                 v.unchecked.len(),
                 reference.display()
             );
+            if v.compared_nothing() {
+                println!(
+                    "repro verify: nothing was compared: {} holds no figure (.svg) or table (.parquet)",
+                    produced.display()
+                );
+            }
             Ok(if v.passed() { Exit::Success } else { Exit::FailedTasks })
         }
         Command::Kinds { kind: None } => {

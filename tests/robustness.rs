@@ -179,6 +179,28 @@ fn gc_removes_only_entries_nothing_refers_to() {
 }
 
 #[test]
+fn gc_waits_for_a_running_run_and_keeps_its_work() {
+    // A run of a pipeline outside pipelines/ is storing its entries when gc starts: gc takes
+    // the cache lock before it reads what to keep, so it waits for the run, whose record
+    // then keeps every entry it stored.
+    let s = Scratch::new("gc-race");
+    s.write("elsewhere/d.yaml", &sleep_pipeline("[1, 2, 3, 4]", 300, "d"));
+    let mut run = s.spawn_run("elsewhere/d.yaml", &["--jobs", "1"]);
+    let t0 = Instant::now();
+    while !s.path("cache/lock.info").exists() && t0.elapsed() < Duration::from_secs(10) {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(400));
+    let out = s.repro(&["gc"]);
+    let text = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(run.wait().unwrap().success());
+    assert!(out.status.success() && text.contains("removed 0") && text.contains("1 recorded run(s)"), "{text}");
+    let (code, err, r) = s.run("elsewhere/d.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.count(None, "computed"), 0, "the run's entries survived gc");
+}
+
+#[test]
 fn gc_keeps_the_work_of_a_pipeline_outside_pipelines() {
     // A user's own pipeline file elsewhere filled the cache; `repro gc` run where
     // pipelines/ holds another file must not remove that work without being told.

@@ -84,3 +84,19 @@ fn a_changed_svg_and_an_uncommitted_figure_fail() {
     assert_eq!(out.status.code(), Some(0), "{stdout}");
     assert!(stdout.contains("1 equal, 0 differ, 1 in reference not produced"), "{stdout}");
 }
+
+#[test]
+fn comparing_nothing_fails() {
+    // An empty produced folder, or one holding only a subfolder, compares nothing: exit 1,
+    // saying so, not "0 equal, 0 differ" and success.
+    let s = Scratch::new("verify-nothing");
+    copy_figure(&committed(), &s.path("reference"));
+    std::fs::create_dir_all(s.path("produced/sub")).unwrap();
+    let out = s.repro(&["verify", "produced", "reference"]);
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("0 equal, 0 differ") && text.contains("nothing was compared"), "{text}");
+    // With one figure produced it passes again.
+    copy_figure(&committed(), &s.path("produced"));
+    assert_eq!(s.repro(&["verify", "produced", "reference"]).status.code(), Some(0));
+}

@@ -35,6 +35,9 @@ pub struct GcSummary {
 /// of a run in the cache's history (younger than `older_than`, when given). A dry run lists
 /// them without removing.
 pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: GcOptions) -> Result<GcSummary> {
+    // The lock first: a run holding it is still storing entries and has not yet recorded
+    // itself in the history; what to keep is read once it is done.
+    let cache = if opt.dry_run { Cache::open_read_only(cache_dir) } else { Cache::open(cache_dir, LockMode::Wait)? };
     let mut live: BTreeSet<String> = BTreeSet::new();
     for p in pipelines {
         let opts =
@@ -51,7 +54,6 @@ pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: Gc
             live.extend(r.tasks.into_iter().filter_map(|t| t.key));
         }
     }
-    let cache = if opt.dry_run { Cache::open_read_only(cache_dir) } else { Cache::open(cache_dir, LockMode::Wait)? };
     for key in cache.all_keys()? {
         if live.contains(&key) {
             summary.kept += 1;

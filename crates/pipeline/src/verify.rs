@@ -59,8 +59,15 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// Nothing differs, and something was compared: an empty produced folder (or one holding
+    /// only subfolders) proves nothing.
     pub fn passed(&self) -> bool {
-        self.differ.is_empty()
+        self.differ.is_empty() && !self.compared_nothing()
+    }
+
+    /// No figure or table was compared.
+    pub fn compared_nothing(&self) -> bool {
+        self.equal.is_empty() && self.differ.is_empty()
     }
 }
 
