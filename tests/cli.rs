@@ -26,6 +26,17 @@ fn kinds_lists_every_kind_with_its_version() {
 }
 
 #[test]
+fn a_column_meaning_with_a_pipe_is_shown_whole() {
+    // docs/outputs.md escapes the pipes of |W| inside its cells; `repro kinds` shows the
+    // meanings whole, where a plain split had cut them at the first pipe.
+    let s = Scratch::new("kinds-pipe");
+    let out = s.repro(&["kinds", "bem.sweep"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("speed v τ / a0 (Eq. 4.18; a0 the Hertz half-width of |W|)"), "{text}");
+    assert!(text.contains("rolling friction force F_T* = μ* |W| (Eq. 5.6)"), "{text}");
+}
+
+#[test]
 fn schema_command_prints_the_committed_schema() {
     let s = Scratch::new("schema-cmd");
     let out = s.repro(&["schema"]);

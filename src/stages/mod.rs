@@ -24,13 +24,50 @@ pub fn documented_columns() -> Vec<(String, ColumnDoc)> {
     OUTPUT_COLUMNS
         .lines()
         .filter_map(|line| {
-            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let cells = table_cells(line);
             let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
             let (unit, meaning) = (cells.get(2)?, cells.get(3)?);
             (cells.len() >= 5 && !unit.is_empty() && !meaning.is_empty())
                 .then(|| (name.to_string(), ColumnDoc { unit: unit.to_string(), meaning: meaning.to_string() }))
         })
         .collect()
+}
+
+/// The cells of a Markdown table row, trimmed, split at the pipes that are not escaped
+/// (`\|` stands for a `|` inside a cell, as in |W|).
+fn table_cells(line: &str) -> Vec<String> {
+    let mut cells = vec![String::new()];
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' if chars.peek() == Some(&'|') => {
+                cells.last_mut().expect("a cell").push('|');
+                chars.next();
+            }
+            '|' => cells.push(String::new()),
+            _ => cells.last_mut().expect("a cell").push(c),
+        }
+    }
+    cells.iter().map(|c| c.trim().to_string()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_escaped_pipe_stays_in_its_cell() {
+        let cells = table_cells(r"| `F_T` | 1 | force F_T* = μ* \|W\| (Eq. 5.6) |");
+        assert_eq!(cells, ["", "`F_T`", "1", "force F_T* = μ* |W| (Eq. 5.6)", ""]);
+        // Every documented meaning is read whole: the ones with |W| end where their row does.
+        let docs: std::collections::BTreeMap<String, ColumnDoc> = documented_columns().into_iter().collect();
+        assert_eq!(docs["V0"].meaning, "speed v τ / a0 (Eq. 4.18; a0 the Hertz half-width of |W|)");
+        assert_eq!(docs["F_T"].meaning, "rolling friction force F_T* = μ* |W| (Eq. 5.6)");
+        // No row of docs/outputs.md has more cells than a name, a unit and a meaning.
+        for line in OUTPUT_COLUMNS.lines().filter(|l| l.starts_with("| `")) {
+            assert_eq!(table_cells(line).len(), 5, "{line}");
+        }
+    }
 }
 
 /// Every stage kind a pipeline may use.
