@@ -381,7 +381,7 @@ impl Kind for FemIndent {
             .with_f64("max_penetration_over_h", col(&|s| s.contact.max_penetration / sh.h))
             .with("stable", ColumnData::Bool(rows.iter().map(|r| r.step.stable).collect()))
             // Flattened states past the stability test where no inverted state is reachable
-            // (`fem::cycle::invert`): the shell stays there.
+            // (`ShellProblem::jump_to_inverted`): the shell stays there.
             .with(
                 "held",
                 ColumnData::Bool(

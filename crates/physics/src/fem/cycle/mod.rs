@@ -72,7 +72,7 @@ pub enum Snap {
     #[default]
     Instability,
     /// At the landing on the inverted branch: the drop a displacement-controlled
-    /// experiment sees. States given up but held by the energy (`invert`) do not count; a
+    /// experiment sees. States given up but held by the energy (`ShellProblem::jump_to_inverted`) do not count; a
     /// leg that never lands has not snapped.
     Landing,
     /// The thesis' own procedure (Section 3.2, `staggered`): adhesion applied as loads

@@ -262,7 +262,7 @@ fn with_adhesion_the_cycle_starts_adhering_and_snaps_later() {
 fn the_adhesive_snap_lands_where_the_energy_leads_whatever_the_rounding() {
     // h/R = 0.06, gamma/(E h) = 2e-3, mu = 0 on the default mesh (239 x 2): the stability
     // test gives up the flattened state at delta/R = 0.190, but under the model's energy
-    // no inverted state is reachable before ~0.255 (`invert`). The loading therefore
+    // no inverted state is reachable before ~0.255 (`jump_to_inverted`). The loading therefore
     // lands later than it loses stability, and the loop between that landing and the
     // snap-back is narrow. Landed by Newton from a dimple instead, W_bar came out -0.029,
     // -0.016 and 0.586 for h = 0.9, h one ulp lower, and gamma 1e-15 higher; by the energy
