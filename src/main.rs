@@ -12,6 +12,7 @@ use describe::{csv_field, describe_kind};
 use exit::{CliError, Exit};
 use repro::pipeline::cache::LockMode;
 use repro::pipeline::executor::{self, Executor, RunOptions, UsageError};
+use repro::pipeline::kind::Registry;
 use repro::pipeline::parse;
 use repro::pipeline::slurm::SlurmOptions;
 use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
@@ -42,384 +43,422 @@ fn main() -> ExitCode {
     faer::set_global_parallelism(faer::Par::Seq);
     let cli = Cli::parse();
     let registry = repro::stages::registry();
-    let result: Result<Exit, CliError> = (|| match cli.command {
-        Command::Run {
-            pipeline,
-            targets,
-            set,
-            jobs,
-            dry_run,
-            explain,
-            force,
-            cache,
-            report,
-            no_wait,
-            figures,
-            tables,
-            quiet,
-            executor,
-            partition,
-            max_jobs,
-            retries,
-            time_limit,
-        } => {
-            let p = load_with(&pipeline, &registry, &set)?;
-            let executor = match executor {
-                ExecutorArg::Local => Executor::Local,
-                ExecutorArg::Slurm => {
-                    Executor::Slurm(SlurmOptions { partition, max_jobs, retries, ..Default::default() })
-                }
+    let result: Result<Exit, CliError> = match cli.command {
+        Command::Run(args) => run_command(args, &registry),
+        Command::Worker(args) => worker_command(args, &registry),
+        Command::Status(args) => status_command(args, &registry),
+        Command::Dag(args) => dag_command(args, &registry),
+        Command::Gc(args) => gc_command(args, &registry),
+        Command::Diff(args) => diff_command(args),
+        Command::Runs(args) => runs_command(args),
+        Command::Point(args) => point_command(args, &registry),
+        Command::Schema => schema_command(&registry),
+        Command::Show(args) => show_command(args),
+        Command::Report(args) => report_command(args, &registry),
+        Command::Verify(args) => verify_command(args),
+        Command::Kinds(args) => kinds_command(args, &registry),
+    };
+    match result {
+        Ok(exit) => exit.into(),
+        Err(e) => e.report(),
+    }
+}
+
+/// `repro run`.
+fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::RunArgs {
+        pipeline,
+        targets,
+        set,
+        jobs,
+        dry_run,
+        explain,
+        force,
+        cache,
+        report,
+        no_wait,
+        figures,
+        tables,
+        quiet,
+        executor,
+        partition,
+        max_jobs,
+        retries,
+        time_limit,
+    } = args;
+    let p = load_with(&pipeline, registry, &set)?;
+    let executor = match executor {
+        ExecutorArg::Local => Executor::Local,
+        ExecutorArg::Slurm => Executor::Slurm(SlurmOptions { partition, max_jobs, retries, ..Default::default() }),
+    };
+    let opts = RunOptions {
+        cache_dir: cache.cache,
+        figures_dir: figures,
+        tables_dir: tables,
+        jobs,
+        dry_run,
+        force,
+        targets,
+        lock: if no_wait { LockMode::Refuse } else { LockMode::Wait },
+        progress: !quiet,
+        executor,
+        time_limit_s: time_limit,
+    };
+    let rep = executor::run(&p, registry, &opts)?;
+    if let Some(path) = report {
+        std::fs::write(&path, serde_json::to_vec_pretty(&rep)?)?;
+    }
+    // A dry run's plan goes to stdout (per stage; per task with --explain).
+    if dry_run {
+        print!("{}", rep.summary(explain));
+    } else {
+        eprint!("{}", rep.summary(explain));
+    }
+    for f in &rep.published {
+        eprintln!("  wrote {f}");
+    }
+    for n in &rep.notes {
+        eprintln!("{n}");
+    }
+    for r in &rep.regressions {
+        eprintln!("repro: regression: {r}");
+    }
+    for e in &rep.errors {
+        eprintln!("repro: error: {e}");
+    }
+    Ok(if !rep.errors.is_empty() {
+        Exit::Error
+    } else if rep.any_failed() {
+        Exit::FailedTasks
+    } else if !rep.regressions.is_empty() {
+        Exit::Regression
+    } else {
+        Exit::Success
+    })
+}
+
+/// `repro worker`.
+fn worker_command(args: cli::WorkerArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::WorkerArgs { cache, list, index } = args;
+    let index = match index {
+        Some(i) => i,
+        None => std::env::var("SLURM_ARRAY_TASK_ID")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .ok_or_else(|| UsageError("worker: give --index or run inside a SLURM array".into()))?,
+    };
+    let ok = repro::pipeline::slurm::work(registry, &cache.cache, &list, index)?;
+    Ok(if ok { Exit::Success } else { Exit::FailedTasks })
+}
+
+/// `repro status`.
+fn status_command(args: cli::StatusArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::StatusArgs { pipeline, set, cache, explain } = args;
+    let p = load_with(&pipeline, registry, &set)?;
+    let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
+    let rep = executor::run(&p, registry, &opts)?;
+    print!("{}", rep.summary(explain));
+    Ok(Exit::Success)
+}
+
+/// `repro dag`.
+fn dag_command(args: cli::DagArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::DagArgs { pipeline, targets, status, cache } = args;
+    let p = load(&pipeline, registry)?;
+    let mut idx = Vec::new();
+    for t in &targets {
+        match p.stages.iter().position(|s| &s.name == t) {
+            Some(i) => idx.push(i),
+            None => return Err(CliError::usage(format!("--target {t}: no stage of that name in {}", p.file))),
+        }
+    }
+    let only = (!idx.is_empty()).then(|| graph::with_ancestors(&p, &idx));
+    let mut states = std::collections::BTreeMap::new();
+    if status {
+        let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, targets, ..Default::default() };
+        let rep = executor::run(&p, registry, &opts)?;
+        for t in &rep.tasks {
+            use repro::pipeline::report::Status as S;
+            let s = match t.status {
+                S::Cached | S::Computed => graph::StageStatus::Cached,
+                S::Failed | S::Skipped => graph::StageStatus::Failed,
+                S::WouldRun | S::Unknown => graph::StageStatus::Stale,
             };
-            let opts = RunOptions {
-                cache_dir: cache.cache,
-                figures_dir: figures,
-                tables_dir: tables,
-                jobs,
-                dry_run,
-                force,
-                targets,
-                lock: if no_wait { LockMode::Refuse } else { LockMode::Wait },
-                progress: !quiet,
-                executor,
-                time_limit_s: time_limit,
-            };
-            let rep = executor::run(&p, &registry, &opts)?;
-            if let Some(path) = report {
-                std::fs::write(&path, serde_json::to_vec_pretty(&rep)?)?;
+            let e = states.entry(t.stage.clone()).or_insert(s);
+            if s != graph::StageStatus::Cached {
+                *e = s;
             }
-            // A dry run's plan goes to stdout (per stage; per task with --explain).
-            if dry_run {
-                print!("{}", rep.summary(explain));
-            } else {
-                eprint!("{}", rep.summary(explain));
-            }
-            for f in &rep.published {
-                eprintln!("  wrote {f}");
-            }
-            for n in &rep.notes {
-                eprintln!("{n}");
-            }
-            for r in &rep.regressions {
-                eprintln!("repro: regression: {r}");
-            }
-            for e in &rep.errors {
-                eprintln!("repro: error: {e}");
-            }
-            Ok(if !rep.errors.is_empty() {
-                Exit::Error
-            } else if rep.any_failed() {
-                Exit::FailedTasks
-            } else if !rep.regressions.is_empty() {
-                Exit::Regression
-            } else {
-                Exit::Success
-            })
         }
-        Command::Worker { cache, list, index } => {
-            let index = match index {
-                Some(i) => i,
-                None => std::env::var("SLURM_ARRAY_TASK_ID")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or_else(|| UsageError("worker: give --index or run inside a SLURM array".into()))?,
-            };
-            let ok = repro::pipeline::slurm::work(&registry, &cache.cache, &list, index)?;
-            Ok(if ok { Exit::Success } else { Exit::FailedTasks })
-        }
-        Command::Status { pipeline, set, cache, explain } => {
-            let p = load_with(&pipeline, &registry, &set)?;
-            let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
-            let rep = executor::run(&p, &registry, &opts)?;
-            print!("{}", rep.summary(explain));
-            Ok(Exit::Success)
-        }
-        Command::Dag { pipeline, targets, status, cache } => {
-            let p = load(&pipeline, &registry)?;
-            let mut idx = Vec::new();
-            for t in &targets {
-                match p.stages.iter().position(|s| &s.name == t) {
-                    Some(i) => idx.push(i),
-                    None => return Err(CliError::usage(format!("--target {t}: no stage of that name in {}", p.file))),
-                }
-            }
-            let only = (!idx.is_empty()).then(|| graph::with_ancestors(&p, &idx));
-            let mut states = std::collections::BTreeMap::new();
-            if status {
-                let opts = RunOptions {
-                    cache_dir: cache.cache,
-                    dry_run: true,
-                    progress: false,
-                    targets,
-                    ..Default::default()
-                };
-                let rep = executor::run(&p, &registry, &opts)?;
-                for t in &rep.tasks {
-                    use repro::pipeline::report::Status as S;
-                    let s = match t.status {
-                        S::Cached | S::Computed => graph::StageStatus::Cached,
-                        S::Failed | S::Skipped => graph::StageStatus::Failed,
-                        S::WouldRun | S::Unknown => graph::StageStatus::Stale,
-                    };
-                    let e = states.entry(t.stage.clone()).or_insert(s);
-                    if s != graph::StageStatus::Cached {
-                        *e = s;
-                    }
-                }
-            }
-            print!("{}", graph::to_dot_with(&p, only.as_ref(), &states));
-            Ok(Exit::Success)
-        }
-        Command::Gc { pipelines, cache, dry_run, older_than } => {
-            let files = if pipelines.is_empty() {
-                let mut v: Vec<PathBuf> = std::fs::read_dir("pipelines")
-                    .map(|d| {
-                        d.filter_map(|e| e.ok().map(|e| e.path()))
-                            .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                // The pipelines of the recorded runs (a user's own file outside pipelines/).
-                for (_, r) in report::run_history(&cache.cache) {
-                    let f = PathBuf::from(&r.pipeline);
-                    if f.exists() && !v.contains(&f) {
-                        v.push(f);
-                    }
-                }
-                v.sort();
-                v.dedup();
-                v
-            } else {
-                pipelines
-            };
-            if let Some(d) = older_than {
-                if !(d >= 0.0 && d.is_finite()) {
-                    return Err(CliError::usage(format!("--older-than {d}: expected a number of days >= 0")));
-                }
-            }
-            let opt = gc::GcOptions {
-                dry_run,
-                older_than: older_than.map(|d| std::time::Duration::from_secs_f64(d * 86400.0)),
-            };
-            let ps = files.iter().map(|f| load(f, &registry)).collect::<Result<Vec<_>, _>>()?;
-            let g = gc::gc(&ps, &registry, &cache.cache, opt)?;
-            let bytes: u64 = g.removed.iter().map(|(_, b)| b).sum();
-            if dry_run {
-                for (key, size) in &g.removed {
-                    println!("would remove {key} ({size} bytes)");
-                }
-            }
-            eprintln!(
-                "repro gc: kept {} entries (referred to by {} pipeline(s) and {} recorded run(s)), {} {} ({:.1} kB)",
-                g.kept,
-                ps.len(),
-                g.runs_kept,
-                if dry_run { "would remove" } else { "removed" },
-                g.removed.len(),
-                bytes as f64 / 1e3
-            );
-            Ok(Exit::Success)
-        }
-        Command::Diff { a, b, cache, rel_tol } => {
-            let runs = report::run_history(&cache.cache);
-            let pick =
-                |name: &Option<String>,
-                 default_from_end: usize|
-                 -> Result<repro::pipeline::report::RunReport, CliError> {
-                    match name {
-                        Some(n) => runs
-                            .iter()
-                            .find(|(p, _)| {
-                                p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
-                                    || p.to_string_lossy() == n.as_str()
-                            })
-                            .map(|(_, r)| r.clone())
-                            .ok_or_else(|| CliError::usage(format!("no recorded run `{n}` (`repro runs` lists them)"))),
-                        None => runs.len().checked_sub(default_from_end).map(|i| runs[i].1.clone()).ok_or_else(|| {
-                            CliError::usage(format!("{} recorded run(s): a diff needs two", runs.len()))
-                        }),
-                    }
-                };
-            let (ra, rb) = (pick(&a, 2)?, pick(&b, 1)?);
-            let store = repro::pipeline::cache::Cache::open_read_only(&cache.cache);
-            print!("{}", repro::pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
-            Ok(Exit::Success)
-        }
-        Command::Runs { cache } => {
-            let runs = report::run_history(&cache.cache);
-            if runs.is_empty() {
-                println!("no recorded runs in {}", cache.cache.display());
-            }
-            for (path, r) in &runs {
-                let name = path.file_stem().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                let set =
-                    if r.overrides.is_empty() { String::new() } else { format!(" -S {}", r.overrides.join(" -S ")) };
-                let commit = r.git_commit.as_deref().map_or(String::new(), |c| {
-                    format!(
-                        "  at {}{}",
-                        &c[..c.len().min(12)],
-                        if c.ends_with("(modified)") { " (modified)" } else { "" }
-                    )
-                });
-                println!(
-                    "{name}  {}  {}{set}{commit}  {} computed, {} cached, {} failed, {:.1} s",
-                    repro::pipeline::report::utc_time(r.started_unix_ms),
-                    r.pipeline,
-                    r.count(repro::pipeline::report::Status::Computed),
-                    r.count(repro::pipeline::report::Status::Cached),
-                    r.count(repro::pipeline::report::Status::Failed),
-                    r.wall_time_s
-                );
-            }
-            Ok(Exit::Success)
-        }
-        Command::Point { kind, params } => {
-            let Some(k) = registry.get(&kind) else {
-                let known: Vec<_> = registry.names().collect();
-                return Err(CliError::usage(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))));
-            };
-            let mut yaml = String::new();
-            let mut seen = std::collections::BTreeSet::new();
-            for p in &params {
-                let Some((name, value)) = p.split_once('=').filter(|(name, _)| !name.trim().is_empty()) else {
-                    return Err(CliError::usage(format!("`{p}`: parameters are NAME=VALUE")));
-                };
-                if !seen.insert(name) {
-                    return Err(CliError::usage(format!("parameter `{name}` is given twice")));
-                }
-                yaml.push_str(&format!("{name}: {value}\n"));
-            }
-            let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
-                .map_err(|e| UsageError(format!("parameters: {e}")))?;
-            let (canonical, _) = k.check(&parse::to_json(&node)).map_err(|errors| {
-                UsageError(
-                    errors
-                        .iter()
-                        .map(|e| match e.path.as_str() {
-                            // A missing field is reported at the root: name the kind instead.
-                            "" => format!("{kind}: {} (`repro kinds` lists the kinds)", e.message),
-                            path => format!("parameter `{path}`: {}", e.message),
-                        })
-                        .collect::<Vec<_>>()
-                        .join("; "),
-                )
-            })?;
-            let out = k.run(&canonical, &repro::pipeline::kind::Inputs { tables: Default::default() })?;
-            let t = &out.table;
-            for row in 0..t.n_rows().min(50) {
-                for (name, col) in &t.columns {
-                    println!("{name:>16} = {}", col.display_at(row));
-                }
-                if t.n_rows() > 1 {
-                    println!();
-                }
-            }
-            if t.n_rows() > 50 {
-                println!("({} more rows)", t.n_rows() - 50);
-            }
-            Ok(Exit::Success)
-        }
-        Command::Schema => {
-            println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(&registry))?);
-            Ok(Exit::Success)
-        }
-        Command::Show { file, columns, csv, head, all } => {
-            let df = repro::pipeline::table::read_parquet(&file)?;
-            let names: Vec<String> = if columns.is_empty() {
-                df.get_column_names()
-                    .iter()
-                    .map(|c| c.to_string())
-                    .filter(|c| all || csv || !matches!(c.as_str(), "task_key" | "code_version"))
+    }
+    print!("{}", graph::to_dot_with(&p, only.as_ref(), &states));
+    Ok(Exit::Success)
+}
+
+/// `repro gc`.
+fn gc_command(args: cli::GcArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::GcArgs { pipelines, cache, dry_run, older_than } = args;
+    let files = if pipelines.is_empty() {
+        let mut v: Vec<PathBuf> = std::fs::read_dir("pipelines")
+            .map(|d| {
+                d.filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "yaml" || x == "yml"))
                     .collect()
-            } else {
-                columns
-            };
-            let shown_rows = head.unwrap_or(usize::MAX).min(df.height());
-            let cols = names
+            })
+            .unwrap_or_default();
+        // The pipelines of the recorded runs (a user's own file outside pipelines/).
+        for (_, r) in report::run_history(&cache.cache) {
+            let f = PathBuf::from(&r.pipeline);
+            if f.exists() && !v.contains(&f) {
+                v.push(f);
+            }
+        }
+        v.sort();
+        v.dedup();
+        v
+    } else {
+        pipelines
+    };
+    if let Some(d) = older_than {
+        if !(d >= 0.0 && d.is_finite()) {
+            return Err(CliError::usage(format!("--older-than {d}: expected a number of days >= 0")));
+        }
+    }
+    let opt =
+        gc::GcOptions { dry_run, older_than: older_than.map(|d| std::time::Duration::from_secs_f64(d * 86400.0)) };
+    let ps = files.iter().map(|f| load(f, registry)).collect::<Result<Vec<_>, _>>()?;
+    let g = gc::gc(&ps, registry, &cache.cache, opt)?;
+    let bytes: u64 = g.removed.iter().map(|(_, b)| b).sum();
+    if dry_run {
+        for (key, size) in &g.removed {
+            println!("would remove {key} ({size} bytes)");
+        }
+    }
+    eprintln!(
+        "repro gc: kept {} entries (referred to by {} pipeline(s) and {} recorded run(s)), {} {} ({:.1} kB)",
+        g.kept,
+        ps.len(),
+        g.runs_kept,
+        if dry_run { "would remove" } else { "removed" },
+        g.removed.len(),
+        bytes as f64 / 1e3
+    );
+    Ok(Exit::Success)
+}
+
+/// `repro diff`.
+fn diff_command(args: cli::DiffArgs) -> Result<Exit, CliError> {
+    let cli::DiffArgs { a, b, cache, rel_tol } = args;
+    let runs = report::run_history(&cache.cache);
+    let pick =
+        |name: &Option<String>, default_from_end: usize| -> Result<repro::pipeline::report::RunReport, CliError> {
+            match name {
+                Some(n) => runs
+                    .iter()
+                    .find(|(p, _)| {
+                        p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
+                            || p.to_string_lossy() == n.as_str()
+                    })
+                    .map(|(_, r)| r.clone())
+                    .ok_or_else(|| CliError::usage(format!("no recorded run `{n}` (`repro runs` lists them)"))),
+                None => runs
+                    .len()
+                    .checked_sub(default_from_end)
+                    .map(|i| runs[i].1.clone())
+                    .ok_or_else(|| CliError::usage(format!("{} recorded run(s): a diff needs two", runs.len()))),
+            }
+        };
+    let (ra, rb) = (pick(&a, 2)?, pick(&b, 1)?);
+    let store = repro::pipeline::cache::Cache::open_read_only(&cache.cache);
+    print!("{}", repro::pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
+    Ok(Exit::Success)
+}
+
+/// `repro runs`.
+fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
+    let cli::RunsArgs { cache } = args;
+    let runs = report::run_history(&cache.cache);
+    if runs.is_empty() {
+        println!("no recorded runs in {}", cache.cache.display());
+    }
+    for (path, r) in &runs {
+        let name = path.file_stem().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+        let set = if r.overrides.is_empty() { String::new() } else { format!(" -S {}", r.overrides.join(" -S ")) };
+        let commit = r.git_commit.as_deref().map_or(String::new(), |c| {
+            format!("  at {}{}", &c[..c.len().min(12)], if c.ends_with("(modified)") { " (modified)" } else { "" })
+        });
+        println!(
+            "{name}  {}  {}{set}{commit}  {} computed, {} cached, {} failed, {:.1} s",
+            repro::pipeline::report::utc_time(r.started_unix_ms),
+            r.pipeline,
+            r.count(repro::pipeline::report::Status::Computed),
+            r.count(repro::pipeline::report::Status::Cached),
+            r.count(repro::pipeline::report::Status::Failed),
+            r.wall_time_s
+        );
+    }
+    Ok(Exit::Success)
+}
+
+/// `repro point`.
+fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::PointArgs { kind, params } = args;
+    let Some(k) = registry.get(&kind) else {
+        let known: Vec<_> = registry.names().collect();
+        return Err(CliError::usage(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))));
+    };
+    let mut yaml = String::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for p in &params {
+        let Some((name, value)) = p.split_once('=').filter(|(name, _)| !name.trim().is_empty()) else {
+            return Err(CliError::usage(format!("`{p}`: parameters are NAME=VALUE")));
+        };
+        if !seen.insert(name) {
+            return Err(CliError::usage(format!("parameter `{name}` is given twice")));
+        }
+        yaml.push_str(&format!("{name}: {value}\n"));
+    }
+    let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
+        .map_err(|e| UsageError(format!("parameters: {e}")))?;
+    let (canonical, _) = k.check(&parse::to_json(&node)).map_err(|errors| {
+        UsageError(
+            errors
                 .iter()
-                .map(|c| df.column(c).with_context(|| format!("{}: no column `{c}`", file.display())))
-                .collect::<anyhow::Result<Vec<_>>>()?;
-            let cell = |v: polars::prelude::AnyValue| match v {
-                polars::prelude::AnyValue::Float64(x) if csv => format!("{x:?}"),
-                polars::prelude::AnyValue::String(t) if csv => csv_field(t),
-                polars::prelude::AnyValue::StringOwned(t) if csv => csv_field(&t),
-                v => v.to_string(),
-            };
-            let cells: Vec<Vec<String>> = (0..shown_rows)
-                .map(|i| cols.iter().map(|c| c.get(i).map(&cell).unwrap_or_default()).collect())
-                .collect();
-            let widths: Vec<usize> = (0..names.len())
-                .map(|j| cells.iter().map(|r| r[j].chars().count()).chain([names[j].len()]).max().unwrap_or(0))
-                .collect();
-            let line = |r: &[String]| {
-                if csv {
-                    r.join(",")
-                } else {
-                    r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ")
-                }
-            };
-            // A reader that stops early (`| head`) closes the pipe: stop quietly.
-            use std::io::Write;
-            let mut out = std::io::stdout().lock();
-            for r in std::iter::once(&names).chain(&cells) {
-                if writeln!(out, "{}", line(r)).is_err() {
-                    break;
-                }
-            }
-            if shown_rows < df.height() && !csv {
-                let _ = writeln!(out, "... {} of {} rows shown", shown_rows, df.height());
-            }
-            Ok(Exit::Success)
+                .map(|e| match e.path.as_str() {
+                    // A missing field is reported at the root: name the kind instead.
+                    "" => format!("{kind}: {} (`repro kinds` lists the kinds)", e.message),
+                    path => format!("parameter `{path}`: {}", e.message),
+                })
+                .collect::<Vec<_>>()
+                .join("; "),
+        )
+    })?;
+    let out = k.run(&canonical, &repro::pipeline::kind::Inputs { tables: Default::default() })?;
+    let t = &out.table;
+    for row in 0..t.n_rows().min(50) {
+        for (name, col) in &t.columns {
+            println!("{name:>16} = {}", col.display_at(row));
         }
-        Command::Report { pipeline, cache, figures, tables, out } => {
-            let p = load(&pipeline, &registry)?;
-            let versions = registry.iter().map(|k| (k.name().to_string(), k.version())).collect();
-            let sources = repro::reproduction_report::Sources {
-                pipeline_file: pipeline,
-                figures_dir: figures,
-                tables_dir: tables,
-                run_report: Some(cache.cache.join("runs").join("last.json")),
-            };
-            let (figures, claims) = repro::reproduction_report::write(&p, &versions, &sources, &out)?;
-            println!("wrote {} ({figures} figures, {claims} claims)", out.display());
-            Ok(Exit::Success)
+        if t.n_rows() > 1 {
+            println!();
         }
-        Command::Verify { produced, reference, rel_tol } => {
-            let v = repro::pipeline::verify::verify(&produced, &reference, rel_tol)?;
-            for (file, d) in &v.differ {
-                println!("DIFFERS {}: {d}", file.display());
-            }
-            println!(
-                "repro verify: {} equal, {} differ, {} in {} not produced (not checked)",
-                v.equal.len(),
-                v.differ.len(),
-                v.unchecked.len(),
-                reference.display()
-            );
-            if v.compared_nothing() {
-                println!(
-                    "repro verify: nothing was compared: {} holds no figure (.svg) or table (.parquet)",
-                    produced.display()
-                );
-            }
-            Ok(if v.passed() { Exit::Success } else { Exit::FailedTasks })
+    }
+    if t.n_rows() > 50 {
+        println!("({} more rows)", t.n_rows() - 50);
+    }
+    Ok(Exit::Success)
+}
+
+/// `repro schema`.
+fn schema_command(registry: &Registry) -> Result<Exit, CliError> {
+    println!("{}", serde_json::to_string_pretty(&schema::pipeline_schema(registry))?);
+    Ok(Exit::Success)
+}
+
+/// `repro show`.
+fn show_command(args: cli::ShowArgs) -> Result<Exit, CliError> {
+    let cli::ShowArgs { file, columns, csv, head, all } = args;
+    let df = repro::pipeline::table::read_parquet(&file)?;
+    let names: Vec<String> = if columns.is_empty() {
+        df.get_column_names()
+            .iter()
+            .map(|c| c.to_string())
+            .filter(|c| all || csv || !matches!(c.as_str(), "task_key" | "code_version"))
+            .collect()
+    } else {
+        columns
+    };
+    let shown_rows = head.unwrap_or(usize::MAX).min(df.height());
+    let cols = names
+        .iter()
+        .map(|c| df.column(c).with_context(|| format!("{}: no column `{c}`", file.display())))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let cell = |v: polars::prelude::AnyValue| match v {
+        polars::prelude::AnyValue::Float64(x) if csv => format!("{x:?}"),
+        polars::prelude::AnyValue::String(t) if csv => csv_field(t),
+        polars::prelude::AnyValue::StringOwned(t) if csv => csv_field(&t),
+        v => v.to_string(),
+    };
+    let cells: Vec<Vec<String>> =
+        (0..shown_rows).map(|i| cols.iter().map(|c| c.get(i).map(&cell).unwrap_or_default()).collect()).collect();
+    let widths: Vec<usize> = (0..names.len())
+        .map(|j| cells.iter().map(|r| r[j].chars().count()).chain([names[j].len()]).max().unwrap_or(0))
+        .collect();
+    let line = |r: &[String]| {
+        if csv {
+            r.join(",")
+        } else {
+            r.iter().zip(&widths).map(|(c, w)| format!("{c:>w$}")).collect::<Vec<_>>().join("  ")
         }
-        Command::Kinds { kind: None } => {
+    };
+    // A reader that stops early (`| head`) closes the pipe: stop quietly.
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    for r in std::iter::once(&names).chain(&cells) {
+        if writeln!(out, "{}", line(r)).is_err() {
+            break;
+        }
+    }
+    if shown_rows < df.height() && !csv {
+        let _ = writeln!(out, "... {} of {} rows shown", shown_rows, df.height());
+    }
+    Ok(Exit::Success)
+}
+
+/// `repro report`.
+fn report_command(args: cli::ReportArgs, registry: &Registry) -> Result<Exit, CliError> {
+    let cli::ReportArgs { pipeline, cache, figures, tables, out } = args;
+    let p = load(&pipeline, registry)?;
+    let versions = registry.iter().map(|k| (k.name().to_string(), k.version())).collect();
+    let sources = repro::reproduction_report::Sources {
+        pipeline_file: pipeline,
+        figures_dir: figures,
+        tables_dir: tables,
+        run_report: Some(cache.cache.join("runs").join("last.json")),
+    };
+    let (figures, claims) = repro::reproduction_report::write(&p, &versions, &sources, &out)?;
+    println!("wrote {} ({figures} figures, {claims} claims)", out.display());
+    Ok(Exit::Success)
+}
+
+/// `repro verify`.
+fn verify_command(args: cli::VerifyArgs) -> Result<Exit, CliError> {
+    let cli::VerifyArgs { produced, reference, rel_tol } = args;
+    let v = repro::pipeline::verify::verify(&produced, &reference, rel_tol)?;
+    for (file, d) in &v.differ {
+        println!("DIFFERS {}: {d}", file.display());
+    }
+    println!(
+        "repro verify: {} equal, {} differ, {} in {} not produced (not checked)",
+        v.equal.len(),
+        v.differ.len(),
+        v.unchecked.len(),
+        reference.display()
+    );
+    if v.compared_nothing() {
+        println!(
+            "repro verify: nothing was compared: {} holds no figure (.svg) or table (.parquet)",
+            produced.display()
+        );
+    }
+    Ok(if v.passed() { Exit::Success } else { Exit::FailedTasks })
+}
+
+/// `repro kinds` and `repro kinds <kind>`.
+fn kinds_command(args: cli::KindsArgs, registry: &Registry) -> Result<Exit, CliError> {
+    match args.kind {
+        None => {
             for k in registry.iter() {
                 println!("{:<28} v{:<3} {}", k.name(), k.version(), k.doc());
             }
             Ok(Exit::Success)
         }
-        Command::Kinds { kind: Some(name) } => {
+        Some(name) => {
             let Some(k) = registry.get(&name) else {
                 let known: Vec<_> = registry.names().collect();
                 return Err(CliError::usage(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))));
             };
-            print!("{}", describe_kind(k, &registry));
+            print!("{}", describe_kind(k, registry));
             Ok(Exit::Success)
         }
-    })();
-    match result {
-        Ok(exit) => exit.into(),
-        Err(e) => e.report(),
     }
 }
