@@ -169,7 +169,7 @@ fn dag_command(args: cli::DagArgs, registry: &Registry) -> Result<Exit, CliError
     for t in &targets {
         match p.stages.iter().position(|s| &s.name == t) {
             Some(i) => idx.push(i),
-            None => return Err(CliError::usage(format!("--target {t}: no stage of that name in {}", p.file))),
+            None => return Err(CliError::usage(parse::unknown_stage("--target", t, &p))),
         }
     }
     let only = (!idx.is_empty()).then(|| graph::with_ancestors(&p, &idx));

@@ -117,6 +117,14 @@ fn targets_run_only_what_they_need() {
     let (code, err, _) = s.run("p.yaml", &["--target", "nope"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--target nope: no stage of that name"), "{err}");
+    // A near miss is answered with the nearest stage, not a list of every stage.
+    let (code, err, _) = s.run("p.yaml", &["--target", "afer"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--target afer: no stage of that name in p.yaml (did you mean `after`?)"), "{err}");
+    assert!(err.contains("`repro dag p.yaml` shows its 3 stages") && !err.contains("sweep"), "{err}");
+    // A prefix of stage names is answered with the names it begins.
+    let (_, err, _) = s.run("p.yaml", &["--target", "sw"]);
+    assert!(err.contains("(did you mean `sweep`?)"), "{err}");
 }
 
 #[test]

@@ -147,19 +147,12 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
     for t in &opts.targets {
         match p.stages.iter().position(|s| &s.name == t) {
             Some(i) => target_idx.push(i),
-            None => {
-                return Err(UsageError(format!(
-                    "--target {t}: no stage of that name in {} (stages: {})",
-                    p.file,
-                    p.stages.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", ")
-                ))
-                .into())
-            }
+            None => return Err(UsageError(crate::parse::unknown_stage("--target", t, p)).into()),
         }
     }
     for f in &opts.force {
         if p.stage(f).is_none() {
-            return Err(UsageError(format!("--force {f}: no stage of that name in {}", p.file)).into());
+            return Err(UsageError(crate::parse::unknown_stage("--force", f, p)).into());
         }
     }
     let selected: BTreeSet<usize> =

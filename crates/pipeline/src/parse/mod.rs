@@ -445,6 +445,27 @@ fn is_valid_name(s: &str) -> bool {
         && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
 }
 
+/// The message for a command-line flag (`--target`, `--force`) naming a stage `name` that
+/// `p` does not have: the nearest stage name if one is close, and where to see them all.
+pub fn unknown_stage(flag: &str, name: &str, p: &Pipeline) -> String {
+    let names: Vec<&str> = p.stages.iter().map(|s| s.name.as_str()).collect();
+    // The stages whose names extend it (a figure's panels: fig4_6 -> fig4_6a, fig4_6b), else
+    // the nearest name.
+    let extending: Vec<String> =
+        names.iter().filter(|n| n.starts_with(name)).take(4).map(|n| format!("`{n}`")).collect();
+    let hint = if !extending.is_empty() {
+        format!(" (did you mean {}?)", extending.join(" or "))
+    } else {
+        suggestion(name, &names).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default()
+    };
+    format!(
+        "{flag} {name}: no stage of that name in {}{hint}; `repro dag {}` shows its {} stages",
+        p.file,
+        p.file,
+        names.len()
+    )
+}
+
 /// The known name closest to `name`, if it is close (edit distance at most 3, and less
 /// than the length of `name`).
 fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
