@@ -37,6 +37,20 @@ fn a_column_meaning_with_a_pipe_is_shown_whole() {
 }
 
 #[test]
+fn messages_name_a_missing_file_without_a_line_and_large_numbers_compactly() {
+    // A pipeline file that does not exist has no line to point at: the file alone, not
+    // `file:0:0`. A parameter of 1e300 in a message reads 1e300, not 301 digits.
+    let s = Scratch::new("messages");
+    let out = s.repro(&["run", "missing.yaml"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("missing.yaml: error: cannot read the pipeline file") && !err.contains(":0:0"), "{err}");
+    let out = s.repro(&["point", "theory.line_pulloff", "lambda=1e300"]);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(err.contains("lambda = 1e300") && !err.contains("10000000000"), "{err}");
+}
+
+#[test]
 fn schema_command_prints_the_committed_schema() {
     let s = Scratch::new("schema-cmd");
     let out = s.repro(&["schema"]);

@@ -147,7 +147,7 @@ impl Kind for LinePullOff {
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let Some(po) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
-            bail!("no line-contact pull-off found for lambda = {}", p.lambda)
+            bail!("no line-contact pull-off found for lambda = {}", crate::pipeline::table::format_number(p.lambda))
         };
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda])

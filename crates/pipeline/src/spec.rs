@@ -16,8 +16,14 @@ pub struct Location {
 }
 
 impl fmt::Display for Location {
+    /// `file:line:column`; the file alone where no line applies (line 0: the file could not
+    /// be read, or the error is about the whole file).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+        if self.line == 0 {
+            write!(f, "{}", self.file)
+        } else {
+            write!(f, "{}:{}:{}", self.file, self.line, self.column)
+        }
     }
 }
 
