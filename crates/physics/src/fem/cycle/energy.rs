@@ -54,20 +54,22 @@ impl ShellProblem<'_> {
             .collect();
         let Some(&last) = flat.last() else { return cycle };
         let Some(mut inv) = self.lower_inverted(&cycle.points[last].step) else { return cycle };
-        // Bisection over the loading states for the first whose inverted state is lower.
+        // Bisection over the loading states for the first whose inverted state is lower:
+        // `hi` is such a state, every state before `lo` (an index one past the last known not
+        // to be) is not; the state before the first loaded one is the adhering start.
         let (mut lo, mut hi) = (0usize, flat.len() - 1);
-        while hi - lo > 1 {
+        while lo < hi {
             let mid = (lo + hi) / 2;
             match self.lower_inverted(&cycle.points[flat[mid]].step) {
                 Some(i) => {
                     hi = mid;
                     inv = i;
                 }
-                None => lo = mid,
+                None => lo = mid + 1,
             }
         }
         let at = &cycle.points[flat[hi]].step;
-        let before = &cycle.points[flat[lo]].step;
+        let before = &cycle.points[if hi > 0 { flat[hi - 1] } else { flat[0] - 1 }].step;
         cycle.buckling = Some(Jump {
             delta: at.delta,
             force_before: at.contact.force,

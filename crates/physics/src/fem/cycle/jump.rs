@@ -3,8 +3,8 @@
 //! finds no stable state), the adhesive jump-in at first touch, and the walk to a target
 //! delta that halves its steps where they fail. Each is a method of the shell problem.
 
-use crate::fem::adhesion::{Adhesion, Tangent};
-use crate::fem::contact::Plate;
+use crate::fem::adhesion::Adhesion;
+use crate::fem::contact::{FrozenAdhesion, Plate};
 use crate::fem::indent::{apex_z, dimple, Options, Step};
 use crate::fem::problem::ShellProblem;
 
@@ -81,13 +81,10 @@ impl ShellProblem<'_> {
         let bare_plate = self.plate.frictionless();
         let structure_plate = Plate { adhesion: None, ..bare_plate.clone() };
         let (bare, structure) = (self.with_plate(&bare_plate), self.with_plate(&structure_plate));
-        let dead = bare_plate.adhesion.map_or(Vec::new(), |ad| {
-            let n = model.n_dofs();
-            let mut g = vec![0.0; n];
-            let z_plate = apex_z(model) - s.delta;
-            ad.apply(&model.mesh, &s.u, z_plate, &mut g, &mut Vec::new(), &mut vec![0.0; n], Tangent::Exact);
-            g
-        });
+        // The adhesive forces of `s`, frozen (the staggered scheme's loads, `FrozenAdhesion`).
+        let dead = bare_plate
+            .adhesion
+            .map_or(Vec::new(), |ad| FrozenAdhesion::at(&ad, &model.mesh, &s.u, apex_z(model) - s.delta).gradient);
         let collapsed = [0.8, 0.6, 1.0].iter().find_map(|&f| {
             let a = f * s.contact.radius;
             let start = dimple(model, &s.u, a, a * a / r_mid);

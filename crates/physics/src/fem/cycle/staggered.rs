@@ -226,6 +226,8 @@ impl ShellProblem<'_> {
             }
             carried = next.loads;
             let mut s = next.step;
+            // The procedure has no stability test of its own: a solved state counts as one
+            // on the path (the tables' `stable` column), its snap the negative slope below.
             s.stable = s.converged;
             let inverted = self.is_inverted(&s);
             let (before, after) = (contact_force(&cur), contact_force(&s));
