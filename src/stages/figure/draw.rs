@@ -123,6 +123,34 @@ pub(super) fn title_lines(title: &str, font: &TextStyle, width: u32) -> Vec<Stri
 
 /// Draws the figure, the legend outside the axes if `legend_outside`; returns the SVG and
 /// how many drawn marks the legend covers.
+/// The runs of a series' points (mapped to the axes' coordinates by `to_axes`) that lie in
+/// view: a run ends at a point out of view (of those that are `finite`; the others are
+/// skipped) and at the series' breaks, so that no line is clamped to the axes' border.
+fn visible_runs(
+    s: &Series,
+    to_axes: impl Fn(&(f64, f64)) -> (f64, f64),
+    in_view: impl Fn(&(f64, f64)) -> bool,
+    finite: impl Fn(&(f64, f64)) -> bool,
+) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    for (k, point) in s.points.iter().enumerate() {
+        if s.breaks.contains(&k) && !runs.last().unwrap().is_empty() {
+            runs.push(Vec::new());
+        }
+        let q = to_axes(point);
+        if !finite(&q) {
+            continue;
+        }
+        if in_view(&q) {
+            runs.last_mut().unwrap().push(q);
+        } else if !runs.last().unwrap().is_empty() {
+            runs.push(Vec::new());
+        }
+    }
+    runs.retain(|r| !r.is_empty());
+    runs
+}
+
 pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) -> Result<(String, usize)> {
     let tx = |x: f64| if p.log_x { x.log10() } else { x };
     let ty = |y: f64| if p.log_y { y.log10() } else { y };
@@ -176,22 +204,7 @@ pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) ->
             // the plotted range is not clamped to its border. A run also ends at the
             // series' breaks.
             let in_view = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
-            let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for (k, &(x, y)) in s.points.iter().enumerate() {
-                if s.breaks.contains(&k) && !runs.last().unwrap().is_empty() {
-                    runs.push(Vec::new());
-                }
-                let q = (tx(x), ty(y));
-                if !inside(&q) {
-                    continue;
-                }
-                if in_view(&q) {
-                    runs.last_mut().unwrap().push(q);
-                } else if !runs.last().unwrap().is_empty() {
-                    runs.push(Vec::new());
-                }
-            }
-            runs.retain(|r| !r.is_empty());
+            let runs = visible_runs(s, |&(x, y)| (tx(x), ty(y)), |q| inside(q) && in_view(q), inside);
             // Error bars, clipped to the axes (on a log axis a bar reaching zero or below
             // runs to the bottom).
             let bars: Vec<_> = s

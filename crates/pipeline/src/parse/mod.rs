@@ -283,41 +283,7 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             }
         },
     };
-    let mut needs = Vec::new();
-    let mut need_locations = Vec::new();
-    let mut matched = Vec::new();
-    let mut match_locations = Vec::new();
-    match map.get_node("needs") {
-        None => {}
-        Some(Node::Sequence(seq)) => {
-            for n in seq.iter() {
-                match n {
-                    Node::Scalar(s) => {
-                        needs.push(s.as_str().to_string());
-                        need_locations.push(cx.loc(n));
-                    }
-                    Node::Mapping(m) => {
-                        if let Some((need, location)) = parse_matched_need(cx, &name, m) {
-                            needs.push(need.stage.clone());
-                            need_locations.push(cx.loc(n));
-                            matched.push(need);
-                            match_locations.push(location);
-                        }
-                    }
-                    _ => cx.err(
-                        cx.loc(n),
-                        format!("stage `{name}`: each entry of `needs` must be a stage name or `{{stage: NAME, match: [PARAM, ...]}}`"),
-                    ),
-                }
-            }
-        }
-        Some(n) => cx.err(cx.loc(n), format!("stage `{name}`: `needs` must be a list of stage names")),
-    }
-    for (i, n) in needs.iter().enumerate() {
-        if needs[..i].contains(n) {
-            cx.err(need_locations[i].clone(), format!("stage `{name}`: `needs` names `{n}` twice"));
-        }
-    }
+    let StageNeeds { needs, need_locations, matched, match_locations } = parse_needs(cx, &name, map);
     let Some(kind) = registry.get(&kind_name) else {
         let known: Vec<_> = registry.names().collect();
         let hint = suggestion(&kind_name, &known).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();
@@ -387,6 +353,56 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         need_locations,
         match_locations,
     })
+}
+
+/// A stage's `needs`: the stage names (a matched entry's too), where each is, and the
+/// entries matched row by row with where their `match` is.
+struct StageNeeds {
+    needs: Vec<String>,
+    need_locations: Vec<Location>,
+    matched: Vec<MatchedNeed>,
+    match_locations: Vec<Location>,
+}
+
+/// Reads the `needs` of stage `name` from its mapping `map`, reporting malformed entries
+/// and names given twice.
+fn parse_needs(cx: &mut Ctx, name: &str, map: &MarkedMappingNode) -> StageNeeds {
+    let mut needs = Vec::new();
+    let mut need_locations = Vec::new();
+    let mut matched = Vec::new();
+    let mut match_locations = Vec::new();
+    match map.get_node("needs") {
+        None => {}
+        Some(Node::Sequence(seq)) => {
+            for n in seq.iter() {
+                match n {
+                    Node::Scalar(s) => {
+                        needs.push(s.as_str().to_string());
+                        need_locations.push(cx.loc(n));
+                    }
+                    Node::Mapping(m) => {
+                        if let Some((need, location)) = parse_matched_need(cx, &name, m) {
+                            needs.push(need.stage.clone());
+                            need_locations.push(cx.loc(n));
+                            matched.push(need);
+                            match_locations.push(location);
+                        }
+                    }
+                    _ => cx.err(
+                        cx.loc(n),
+                        format!("stage `{name}`: each entry of `needs` must be a stage name or `{{stage: NAME, match: [PARAM, ...]}}`"),
+                    ),
+                }
+            }
+        }
+        Some(n) => cx.err(cx.loc(n), format!("stage `{name}`: `needs` must be a list of stage names")),
+    }
+    for (i, n) in needs.iter().enumerate() {
+        if needs[..i].contains(n) {
+            cx.err(need_locations[i].clone(), format!("stage `{name}`: `needs` names `{n}` twice"));
+        }
+    }
+    StageNeeds { needs, need_locations, matched, match_locations }
 }
 
 /// A `needs` entry read row by row: `{stage: NAME, match: [PARAM, ...]}`, and where its
