@@ -381,7 +381,7 @@ fn parse_needs(cx: &mut Ctx, name: &str, map: &MarkedMappingNode) -> StageNeeds 
                         need_locations.push(cx.loc(n));
                     }
                     Node::Mapping(m) => {
-                        if let Some((need, location)) = parse_matched_need(cx, &name, m) {
+                        if let Some((need, location)) = parse_matched_need(cx, name, m) {
                             needs.push(need.stage.clone());
                             need_locations.push(cx.loc(n));
                             matched.push(need);
