@@ -11,5 +11,7 @@
 pub use physics::{bem, fem, lennard_jones, numerics, rheology, theory};
 pub use pipeline;
 
+pub mod description;
+pub mod point;
 pub mod reproduction_report;
 pub mod stages;

@@ -17,6 +17,7 @@ use repro::pipeline::parse;
 use repro::pipeline::slurm::SlurmOptions;
 use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
 use repro::pipeline::{gc, graph, report, schema};
+use repro::point::PointError;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -302,10 +303,6 @@ fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
 /// `repro point`.
 fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliError> {
     let cli::PointArgs { kind, params } = args;
-    let Some(k) = registry.get(&kind) else {
-        let known: Vec<_> = registry.names().collect();
-        return Err(CliError::usage(format!("unknown stage kind `{kind}`; known kinds: {}", known.join(", "))));
-    };
     let mut yaml = String::new();
     let mut seen = std::collections::BTreeSet::new();
     for p in &params {
@@ -319,20 +316,10 @@ fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliE
     }
     let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
         .map_err(|e| UsageError(format!("parameters: {e}")))?;
-    let (canonical, _) = k.check(&parse::to_json(&node)).map_err(|errors| {
-        UsageError(
-            errors
-                .iter()
-                .map(|e| match e.path.as_str() {
-                    // A missing field is reported at the root: name the kind instead.
-                    "" => format!("{kind}: {} (`repro kinds` lists the kinds)", e.message),
-                    path => format!("parameter `{path}`: {}", e.message),
-                })
-                .collect::<Vec<_>>()
-                .join("; "),
-        )
+    let out = repro::point::compute(registry, &kind, &parse::to_json(&node)).map_err(|e| match e {
+        PointError::Failed(failed) => CliError::from(anyhow::Error::from(failed)),
+        invalid => CliError::usage(invalid.to_string()),
     })?;
-    let out = k.run(&canonical, &repro::pipeline::kind::Inputs { tables: Default::default() })?;
     let t = &out.table;
     for row in 0..t.n_rows().min(50) {
         for (name, col) in &t.columns {

@@ -74,8 +74,15 @@ mod tests {
 pub fn registry() -> Registry {
     let mut r = Registry::new();
     r.document_columns(documented_columns());
-    // Tasks stop at the solvers' checkpoints once their time limit has passed.
-    r.set_limiter(|limit, f| crate::numerics::budget::within(limit, f).ok());
+    // Tasks stop at the solvers' checkpoints once their time limit has passed, or the
+    // process cancelled them.
+    r.set_limiter(|limit, f| {
+        use crate::numerics::budget::{within, Exhausted};
+        within(limit, f).map_err(|why| match why {
+            Exhausted::Deadline => crate::pipeline::kind::Stopped::TimeLimit,
+            Exhausted::Cancelled => crate::pipeline::kind::Stopped::Interrupted,
+        })
+    });
     theory::register(&mut r);
     bem::register(&mut r);
     fem::register(&mut r);

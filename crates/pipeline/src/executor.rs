@@ -140,7 +140,23 @@ fn make_bar(multi: &indicatif::MultiProgress, stage: &str, n: usize) -> indicati
     bar
 }
 
+/// Runs a pipeline (its targets and what they need): computes what the cache lacks,
+/// publishes, records the run; returns its report.
 pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunReport, RunError> {
+    run_keeping(p, registry, opts).map(|(report, _)| report)
+}
+
+/// A stage the run completed: per point its key and output, and the wall time its task
+/// took (when it was computed, for a point the cache held).
+pub struct Completed {
+    pub stage: String,
+    pub points: Vec<(Hash, Output)>,
+    pub times: Vec<f64>,
+}
+
+/// [`run`], also returning the stages it completed, in the pipeline's order (for callers
+/// that read the tables in memory, such as the Python package).
+pub fn run_keeping(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<(RunReport, Vec<Completed>), RunError> {
     let start = Instant::now();
     let started_unix_ms = unix_ms();
     let mut target_idx = Vec::new();
@@ -589,5 +605,11 @@ pub fn run(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<RunRe
             }
         }
     }
-    Ok(report)
+    let mut completed = Vec::new();
+    for (si, state) in states {
+        if let StageState::Done { points, times, .. } = state {
+            completed.push(Completed { stage: p.stages[si].name.clone(), points, times });
+        }
+    }
+    Ok((report, completed))
 }

@@ -332,15 +332,29 @@ impl<K: Kind> DynKind for Typed<K> {
     }
 }
 
-/// Runs a task's computation within a time limit; `None` if the limit passed first. The
-/// code that binds kinds to their solvers installs it (`Registry::set_limiter`): it knows
-/// how they are interrupted.
-pub type Limiter = fn(Duration, &mut dyn FnMut() -> Result<Output>) -> Option<Result<Output>>;
+/// Why a limited computation stopped before it ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stopped {
+    /// Its time limit passed.
+    TimeLimit,
+    /// The process was interrupted (Ctrl-C in the Python package).
+    Interrupted,
+}
+
+/// Runs a task's computation within a time limit, or says why it stopped first. The code
+/// that binds kinds to their solvers installs it (`Registry::set_limiter`): it knows how
+/// they are interrupted.
+pub type Limiter = fn(Duration, &mut dyn FnMut() -> Result<Output>) -> Result<Result<Output>, Stopped>;
 
 /// A task stopped at its time limit (seconds).
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[error("timed out: past its time limit of {0} s (a stage's `time_limit`, or `repro run --time-limit`)")]
 pub struct TimeLimitExceeded(pub f64);
+
+/// A task stopped because the process was interrupted.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("interrupted before it ended")]
+pub struct Interrupted;
 
 /// The stage kinds a pipeline may use, by name, and what their output columns mean.
 #[derive(Default)]
@@ -397,7 +411,7 @@ impl Registry {
     }
 
     /// Runs one point of `kind`, stopped at `limit` (if the registry has a limiter) with
-    /// [`TimeLimitExceeded`].
+    /// [`TimeLimitExceeded`], or by an interrupt with [`Interrupted`].
     pub fn run_limited(
         &self,
         kind: &dyn DynKind,
@@ -406,8 +420,11 @@ impl Registry {
         limit: Option<Duration>,
     ) -> Result<Output> {
         match (self.limiter, limit) {
-            (Some(limiter), Some(limit)) => limiter(limit, &mut || kind.run(params, inputs))
-                .unwrap_or_else(|| Err(TimeLimitExceeded(limit.as_secs_f64()).into())),
+            (Some(limiter), Some(limit)) => match limiter(limit, &mut || kind.run(params, inputs)) {
+                Ok(out) => out,
+                Err(Stopped::TimeLimit) => Err(TimeLimitExceeded(limit.as_secs_f64()).into()),
+                Err(Stopped::Interrupted) => Err(Interrupted.into()),
+            },
             _ => kind.run(params, inputs),
         }
     }

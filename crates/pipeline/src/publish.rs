@@ -90,16 +90,16 @@ fn fixed_params(stage: &Stage) -> serde_json::Map<String, serde_json::Value> {
     fixed
 }
 
-/// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
-/// `figures/<stage>.<ext>` for each artifact and `figures/<stage>.parquet` for its data.
-pub fn publish_stage(
+/// A completed stage's table as published: its rows with their provenance (task key, code
+/// version, wall time) and, in the Parquet metadata, the stage's parameters and every
+/// column's unit and meaning. Also whether the stage is a figure.
+pub fn stage_parquet(
     p: &Pipeline,
     stage: &Stage,
     registry: &Registry,
     points: &[(Hash, Output)],
     times: &[f64],
-    dirs: &OutputDirs,
-) -> Result<Vec<String>> {
+) -> Result<(Vec<u8>, bool)> {
     let kind = registry.get(&stage.kind).unwrap();
     let code_version = format!("{}@v{}", stage.kind, kind.version());
     let is_figure = points.iter().any(|(_, o)| !o.artifacts.is_empty());
@@ -121,13 +121,27 @@ pub fn publish_stage(
         ("repro.params".to_string(), serde_json::to_string(&fixed_params(stage))?),
         ("repro.columns".to_string(), serde_json::to_string(&columns)?),
     ];
+    Ok((table.to_parquet_bytes(&metadata)?, is_figure))
+}
+
+/// Publishes a completed stage: `tables/<stage>.parquet`, or for a figure
+/// `figures/<stage>.<ext>` for each artifact and `figures/<stage>.parquet` for its data.
+pub fn publish_stage(
+    p: &Pipeline,
+    stage: &Stage,
+    registry: &Registry,
+    points: &[(Hash, Output)],
+    times: &[f64],
+    dirs: &OutputDirs,
+) -> Result<Vec<String>> {
+    let (bytes, is_figure) = stage_parquet(p, stage, registry, points, times)?;
     if is_figure && points.len() != 1 {
         bail!("figure stage `{}` has {} points; a figure stage takes no sweep", stage.name, points.len());
     }
     let dir = if is_figure { &dirs.figures } else { &dirs.tables };
     let mut written = Vec::new();
     let pq = dir.join(format!("{}.parquet", stage.name));
-    if publish_file(&pq, &table.to_parquet_bytes(&metadata)?)? {
+    if publish_file(&pq, &bytes)? {
         written.push(pq.display().to_string());
     }
     for (_, o) in points {

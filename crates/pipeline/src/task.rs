@@ -5,7 +5,7 @@
 
 use crate::cache::{Cache, Entry};
 use crate::key::Hash;
-use crate::kind::{DynKind, Inputs, Output, Registry, TimeLimitExceeded};
+use crate::kind::{DynKind, Inputs, Interrupted, Output, Registry, TimeLimitExceeded};
 use serde::{Deserialize, Serialize};
 use std::time::{Duration, Instant};
 
@@ -22,6 +22,10 @@ pub enum TaskError {
     /// The computation was stopped at its time limit.
     #[error("timed out: past its time limit of {limit_s} s (a stage's `time_limit`, or `repro run --time-limit`)")]
     TimedOut { limit_s: f64 },
+    /// The process was interrupted while it ran, or before it started (Ctrl-C in the
+    /// Python package); nothing of it is stored.
+    #[error("interrupted before it ended")]
+    Interrupted,
     /// The table it returned is not one a stage may publish (NaN, infinity, ragged columns).
     #[error("invalid output: {message}")]
     InvalidOutput { message: String },
@@ -38,9 +42,9 @@ pub enum TaskError {
     Worker { message: String },
 }
 
-/// Computes one task and stores its entry: the kind's run with panics caught, held to
-/// `limit` (`Registry::run_limited`), its table checked. Returns the output or how it
-/// failed, and the wall time. Shared by the local backend and the SLURM worker.
+/// Computes one task and stores its entry: [`guarded_run`], then its entry written to
+/// the cache. Returns the output or how it failed, and the wall time. Shared by the local
+/// backend and the SLURM worker.
 pub fn compute_task(
     registry: &Registry,
     kind: &dyn DynKind,
@@ -51,6 +55,26 @@ pub fn compute_task(
     limit: Option<Duration>,
 ) -> (Result<Output, TaskError>, f64) {
     crate::fault::point("task.start");
+    let (out, dt) = guarded_run(registry, kind, params, inputs, limit);
+    let out = out.and_then(|o| {
+        let entry = Entry::new(key.clone(), kind.name(), kind.version(), params.clone(), o, dt);
+        cache.put(&entry).map_err(|e| TaskError::NotStored { message: format!("{e:#}") })?;
+        Ok(entry.output)
+    });
+    (out, dt)
+}
+
+/// Computes one point of `kind` as a task is computed, without storing it: not started
+/// when its estimated memory exceeds what is available, its panics caught, held to
+/// `limit` (`Registry::run_limited`), its table checked (no NaN or infinity). Returns the
+/// output or how it failed, and the wall time.
+pub fn guarded_run(
+    registry: &Registry,
+    kind: &dyn DynKind,
+    params: &serde_json::Value,
+    inputs: &Inputs,
+    limit: Option<Duration>,
+) -> (Result<Output, TaskError>, f64) {
     if let (Some(needed_bytes), Some(available_bytes)) = (kind.memory_bytes(params), available_memory()) {
         if needed_bytes > available_bytes {
             return (Err(TaskError::Resources { needed_bytes, available_bytes }), 0.0);
@@ -63,9 +87,12 @@ pub fn compute_task(
         Ok(Ok(out)) => {
             out.table.check().map(|_| out).map_err(|e| TaskError::InvalidOutput { message: format!("{e:#}") })
         }
-        Ok(Err(e)) => Err(match e.downcast_ref::<TimeLimitExceeded>() {
-            Some(t) => TaskError::TimedOut { limit_s: t.0 },
-            None => TaskError::Failed { message: format!("{e:#}") },
+        Ok(Err(e)) => Err(if let Some(t) = e.downcast_ref::<TimeLimitExceeded>() {
+            TaskError::TimedOut { limit_s: t.0 }
+        } else if e.is::<Interrupted>() {
+            TaskError::Interrupted
+        } else {
+            TaskError::Failed { message: format!("{e:#}") }
         }),
         Err(panic) => Err(TaskError::Panicked {
             message: panic
@@ -75,13 +102,7 @@ pub fn compute_task(
                 .unwrap_or_default(),
         }),
     };
-    let dt = t0.elapsed().as_secs_f64();
-    let out = out.and_then(|o| {
-        let entry = Entry::new(key.clone(), kind.name(), kind.version(), params.clone(), o, dt);
-        cache.put(&entry).map_err(|e| TaskError::NotStored { message: format!("{e:#}") })?;
-        Ok(entry.output)
-    });
-    (out, dt)
+    (out, t0.elapsed().as_secs_f64())
 }
 
 /// The memory a task may use, in bytes: `REPRO_MEMORY_BYTES` if set (a share of a node, or
