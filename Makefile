@@ -2,7 +2,10 @@
 CARGO ?= cargo
 PIPELINE ?= pipelines/thesis.yaml
 
-.PHONY: coverage figures test build schema schema-check clean-cache lint bench bench-chapter3 bench-gamma-c validate-shell verify report report-check readme-example
+PYTHON ?= python3
+PYENV ?= target/python
+
+.PHONY: python-test coverage figures test build schema schema-check clean-cache lint bench bench-chapter3 bench-gamma-c validate-shell verify report report-check readme-example
 
 build:
 	$(CARGO) build
@@ -21,6 +24,15 @@ test:
 	else \
 		echo "make test: SLURM executor tests skipped (need root and Debian's slurm-wlm and munge; .ci/run installs them)"; \
 	fi
+	$(MAKE) python-test
+
+# The Python package (crates/python, docs/python.md): built by maturin (from PyPI) into a
+# virtual environment of its own, sharing the workspace's dependency build (target/debug),
+# then its tests (pytest) against the command line and the example script.
+python-test: build
+	[ -x $(PYENV)/bin/python ] || $(PYTHON) -m venv --system-site-packages $(PYENV)
+	$(PYENV)/bin/python -m pip install --quiet --disable-pip-version-check ./crates/python pytest numpy pandas pyarrow matplotlib
+	REPRO_BIN=$(CURDIR)/target/debug/repro $(PYENV)/bin/python -m pytest -q crates/python/tests
 
 # Every committed figure is what the code produces: the pipeline regenerated from an empty
 # cache into target/artifacts (figures, tables, the run report), then compared with the

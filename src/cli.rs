@@ -217,6 +217,10 @@ pub(crate) struct PointArgs {
     pub(crate) kind: String,
     /// Parameters as NAME=VALUE (values read as YAML scalars).
     pub(crate) params: Vec<String>,
+    /// Print the table as JSON, `{"column": [values]}`, every number to the bits it has
+    /// (for scripts; the text shows six digits).
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 /// The arguments of `repro kinds` (`Command::Kinds`).

@@ -16,6 +16,7 @@ use repro::pipeline::kind::Registry;
 use repro::pipeline::parse;
 use repro::pipeline::slurm::SlurmOptions;
 use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
+use repro::pipeline::table::ColumnData;
 use repro::pipeline::{gc, graph, report, schema};
 use repro::point::PointError;
 use std::path::{Path, PathBuf};
@@ -104,6 +105,7 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
         progress: !quiet,
         executor,
         time_limit_s: time_limit,
+        counter: None,
     };
     let rep = executor::run(&p, registry, &opts)?;
     if let Some(path) = report {
@@ -302,7 +304,7 @@ fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
 
 /// `repro point`.
 fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliError> {
-    let cli::PointArgs { kind, params } = args;
+    let cli::PointArgs { kind, params, json } = args;
     let mut yaml = String::new();
     let mut seen = std::collections::BTreeSet::new();
     for p in &params {
@@ -321,6 +323,23 @@ fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliE
         invalid => CliError::usage(invalid.to_string()),
     })?;
     let t = &out.table;
+    if json {
+        let columns: serde_json::Map<String, serde_json::Value> = t
+            .columns
+            .iter()
+            .map(|(name, col)| {
+                let values = match col {
+                    ColumnData::F64(v) => serde_json::json!(v),
+                    ColumnData::I64(v) => serde_json::json!(v),
+                    ColumnData::Bool(v) => serde_json::json!(v),
+                    ColumnData::Str(v) => serde_json::json!(v),
+                };
+                (name.clone(), values)
+            })
+            .collect();
+        println!("{}", serde_json::Value::Object(columns));
+        return Ok(Exit::Success);
+    }
     for row in 0..t.n_rows().min(50) {
         for (name, col) in &t.columns {
             println!("{name:>16} = {}", col.display_at(row));

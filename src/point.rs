@@ -38,7 +38,10 @@ fn invalid_text(kind: &str, errors: &[FieldError]) -> String {
 /// The kind named `kind` and the canonical parameters of the point `params` gives.
 pub fn check<'r>(registry: &'r Registry, kind: &str, params: &Value) -> Result<(&'r dyn DynKind, Value), PointError> {
     let Some(k) = registry.get(kind) else {
-        return Err(PointError::UnknownKind { kind: kind.to_string(), known: registry.names().map(String::from).collect() });
+        return Err(PointError::UnknownKind {
+            kind: kind.to_string(),
+            known: registry.names().map(String::from).collect(),
+        });
     };
     let (canonical, _) =
         k.check(params).map_err(|errors| PointError::InvalidParameters { kind: kind.to_string(), errors })?;

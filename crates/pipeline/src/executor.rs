@@ -43,6 +43,16 @@ pub struct RunOptions {
     pub executor: Executor,
     /// Every task's time limit in seconds (`--time-limit`), over the stages' and kinds' own.
     pub time_limit_s: Option<f64>,
+    /// Counts the tasks to compute and those computed, for a caller that shows progress
+    /// its own way (the Python package's tqdm bar).
+    pub counter: Option<std::sync::Arc<TaskCounter>>,
+}
+
+/// Tasks to compute and computed so far in a run, read while it runs.
+#[derive(Debug, Default)]
+pub struct TaskCounter {
+    pub total: std::sync::atomic::AtomicUsize,
+    pub done: std::sync::atomic::AtomicUsize,
 }
 
 /// Where tasks are computed.
@@ -69,6 +79,7 @@ impl Default for RunOptions {
             progress: true,
             executor: Executor::Local,
             time_limit_s: None,
+            counter: None,
         }
     }
 }
@@ -156,7 +167,11 @@ pub struct Completed {
 
 /// [`run`], also returning the stages it completed, in the pipeline's order (for callers
 /// that read the tables in memory, such as the Python package).
-pub fn run_keeping(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Result<(RunReport, Vec<Completed>), RunError> {
+pub fn run_keeping(
+    p: &Pipeline,
+    registry: &Registry,
+    opts: &RunOptions,
+) -> Result<(RunReport, Vec<Completed>), RunError> {
     let start = Instant::now();
     let started_unix_ms = unix_ms();
     let mut target_idx = Vec::new();
@@ -401,7 +416,15 @@ pub fn run_keeping(p: &Pipeline, registry: &Registry, opts: &RunOptions) -> Resu
                         None => slurm.insert(Coordinator::new(&cache, so.clone())?),
                     },
                 };
-                let outcomes = backend.compute(&tasks, registry, &cache, &|i| bars[&jobs[i].stage].inc(1))?;
+                if let Some(c) = &opts.counter {
+                    c.total.fetch_add(jobs.len(), std::sync::atomic::Ordering::Relaxed);
+                }
+                let outcomes = backend.compute(&tasks, registry, &cache, &|i| {
+                    bars[&jobs[i].stage].inc(1);
+                    if let Some(c) = &opts.counter {
+                        c.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    }
+                })?;
                 drop(tasks);
                 for bar in bars.values() {
                     bar.finish();

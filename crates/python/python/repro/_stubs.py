@@ -1,0 +1,181 @@
+"""Writes the package's type stubs (``__init__.pyi``) from the kinds' declarations: an
+overload of ``point`` and ``sweep`` per kind, whose keywords are its parameters (typed,
+``lambda`` spelled ``lambda_``) and whose docstring gives their meanings, ranges and units
+and the kind's output columns. An editor then completes parameters and shows their units.
+
+Regenerate after a kind's parameters change: ``python3 -m repro._stubs >
+crates/python/python/repro/__init__.pyi`` (a test checks the committed file is current).
+"""
+
+import keyword
+import textwrap
+
+import repro
+
+HEAD = '''"""Type stubs of repro, generated from the stage kinds' declarations by
+``python3 -m repro._stubs`` (do not edit)."""
+
+import os
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Union, overload
+
+import numpy as np
+
+from .errors import (
+    CacheBusy as CacheBusy,
+    CacheError as CacheError,
+    InvalidParameter as InvalidParameter,
+    InvalidPipeline as InvalidPipeline,
+    NotConverged as NotConverged,
+    ReproError as ReproError,
+    TaskFailed as TaskFailed,
+    UnknownKind as UnknownKind,
+    UsageError as UsageError,
+)
+
+__version__: str
+DEFAULT_CACHE: str
+
+@dataclass(frozen=True)
+class Param:
+    name: str
+    type: str
+    required: bool
+    default: Any
+    range: str
+    sweepable: bool
+    meaning: str
+
+@dataclass(frozen=True)
+class Column:
+    name: str
+    unit: str
+    meaning: str
+
+@dataclass(frozen=True)
+class KindDescription:
+    name: str
+    version: int
+    doc: str
+    time_limit_s: float
+    params: List[Param]
+    columns: List[Column]
+    def param(self, name: str) -> Param: ...
+    def column(self, name: str) -> Column: ...
+
+class Run:
+    report: Dict[str, Any]
+    failures: List[str]
+    @property
+    def stages(self) -> List[str]: ...
+    @property
+    def tables(self) -> Mapping[str, Any]: ...
+    def table(self, stage: str) -> Any: ...
+    @property
+    def computed(self) -> int: ...
+    @property
+    def cached(self) -> int: ...
+    @property
+    def failed(self) -> int: ...
+    @property
+    def notes(self) -> List[str]: ...
+    @property
+    def published(self) -> List[str]: ...
+    @property
+    def wall_time_s(self) -> float: ...
+    @property
+    def claims(self) -> Any: ...
+
+Sweep = Union[float, Sequence[float], np.ndarray, Mapping[str, Any]]
+Path = Union[str, os.PathLike]
+
+def kinds() -> List[str]: ...
+def describe(kind: str) -> KindDescription: ...
+def run(
+    pipeline: Path,
+    targets: Optional[Sequence[str]] = None,
+    *,
+    set: Optional[Mapping[str, Any]] = None,
+    cache: Optional[Path] = None,
+    figures: Path = "figures",
+    tables: Path = "tables",
+    jobs: Optional[int] = None,
+    force: Sequence[str] = (),
+    dry_run: bool = False,
+    progress: Optional[bool] = None,
+    backend: str = "pandas",
+    raise_on_failure: bool = True,
+) -> Run: ...
+'''
+
+TYPES = {"number": "float", "integer": "int", "boolean": "bool", "string": "str"}
+
+
+def py_type(t: str, sweepable: bool, sweep: bool) -> str:
+    if sweep and sweepable:
+        return "Sweep"
+    alts = [a.strip() for a in t.split(" or ")]
+    names = [TYPES.get(a, "Any") for a in alts if a != "null"]
+    base = names[0] if len(set(names)) == 1 else "Any"
+    return f"Optional[{base}]" if "null" in alts else base
+
+
+def keyword_name(name: str) -> str:
+    return f"{name}_" if keyword.iskeyword(name) else name
+
+
+def docstring(d) -> str:
+    lines = [d.doc, "", "Parameters:"]
+    for p in d.params:
+        state = "required" if p.required else f"default {p.default!r}"
+        rng = f", {p.range}" if p.range else ""
+        sweep = ", sweepable" if p.sweepable else ""
+        lines.append(f"    {keyword_name(p.name)} ({p.type}; {state}{rng}{sweep}): {p.meaning}")
+    if d.columns:
+        lines += ["", "Columns:"]
+        lines += [f"    {c.name} [{c.unit}]: {c.meaning}" for c in d.columns]
+    def wrap(line):
+        indent = "        " if line.startswith("    ") else ""
+        return textwrap.fill(line, 100, subsequent_indent=indent) if line else ""
+
+    body = "\n".join(wrap(line) for line in lines)
+    return textwrap.indent('"""' + body.replace('"""', "'''") + '\n"""', "    ")
+
+
+def overload(d, fn: str) -> str:
+    extra = (
+        ["raise_on_unconverged: bool = False"]
+        if fn == "point"
+        else [
+            "cache: Optional[Path] = None",
+            "jobs: Optional[int] = None",
+            "progress: Optional[bool] = None",
+            "backend: str = 'pandas'",
+            "raise_on_unconverged: bool = False",
+        ]
+    )
+    params = [f"{keyword_name(p.name)}: {py_type(p.type, p.sweepable, fn == 'sweep')} = ..." for p in d.params]
+    ret = "Dict[str, Any]" if fn == "point" else "Any"
+    args = ",\n    ".join(
+        [f'kind: Literal["{d.name}"]', "params: Optional[Mapping[str, Any]] = None", "/", "*", *extra, *params]
+    )
+    return f"@overload\ndef {fn}(\n    {args},\n) -> {ret}:\n{docstring(d)}\n"
+
+
+def render() -> str:
+    out = [HEAD]
+    for fn in ("point", "sweep"):
+        for name in repro.kinds():
+            out.append(overload(repro.describe(name), fn))
+        generic = (
+            "raise_on_unconverged: bool = False, **kw: Any) -> Dict[str, Any]: ..."
+            if fn == "point"
+            else "cache: Optional[Path] = None, jobs: Optional[int] = None, progress: Optional[bool] = None, "
+            "backend: str = 'pandas', raise_on_unconverged: bool = False, **kw: Any) -> Any: ..."
+        )
+        out.append(f"@overload\ndef {fn}(kind: str, params: Optional[Mapping[str, Any]] = None, /, *, {generic}\n")
+    return "\n".join(out)
+
+
+if __name__ == "__main__":
+    print(render(), end="")
