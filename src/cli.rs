@@ -221,6 +221,10 @@ pub(crate) struct PointArgs {
     /// (for scripts; the text shows six digits).
     #[arg(long)]
     pub(crate) json: bool,
+    /// Stop the point after this many seconds (default: its kind's time limit, `repro kinds
+    /// KIND`), as a task of a run is stopped.
+    #[arg(long, value_name = "SECONDS")]
+    pub(crate) time_limit: Option<f64>,
 }
 
 /// The arguments of `repro kinds` (`Command::Kinds`).

@@ -57,6 +57,10 @@ pub enum CliError {
     /// Another run holds the cache.
     #[error(transparent)]
     CacheBusy(#[from] CacheBusy),
+    /// The one task of `repro point` failed, panicked, ran out of time or was refused its
+    /// memory (as a task of a run fails: exit code 1).
+    #[error("the point was not computed: {0}")]
+    TaskFailed(#[from] repro::pipeline::task::TaskError),
     /// Anything else (the file system, the cache, SLURM), with its chain of causes.
     #[error("{0:#}")]
     Other(#[from] anyhow::Error),
@@ -100,6 +104,7 @@ impl CliError {
         match self {
             CliError::InvalidPipeline(_) | CliError::Usage(_) => Exit::InvalidInput,
             CliError::CacheBusy(_) => Exit::CacheBusy,
+            CliError::TaskFailed(_) => Exit::FailedTasks,
             CliError::Other(_) => Exit::Error,
         }
     }
@@ -127,7 +132,8 @@ mod tests {
         let busy = CliError::from(RunError::CacheBusy(CacheBusy { dir: "c".into(), holder: "pid 1".into() }));
         let usage = CliError::from(RunError::Usage(UsageError("--target x".into())));
         let io = CliError::from(std::io::Error::other("disk full"));
-        let codes: Vec<u8> = [invalid, usage, busy, io].iter().map(|e| e.exit().code()).collect();
-        assert_eq!(codes, vec![2, 2, 3, 4]);
+        let failed = CliError::from(repro::pipeline::task::TaskError::TimedOut { limit_s: 1.0 });
+        let codes: Vec<u8> = [invalid, usage, busy, io, failed].iter().map(|e| e.exit().code()).collect();
+        assert_eq!(codes, vec![2, 2, 3, 4, 1]);
     }
 }

@@ -304,7 +304,7 @@ fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
 
 /// `repro point`.
 fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliError> {
-    let cli::PointArgs { kind, params, json } = args;
+    let cli::PointArgs { kind, params, json, time_limit } = args;
     let mut yaml = String::new();
     let mut seen = std::collections::BTreeSet::new();
     for p in &params {
@@ -318,8 +318,8 @@ fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliE
     }
     let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
         .map_err(|e| UsageError(format!("parameters: {e}")))?;
-    let out = repro::point::compute(registry, &kind, &parse::to_json(&node)).map_err(|e| match e {
-        PointError::Failed(failed) => CliError::from(anyhow::Error::from(failed)),
+    let out = repro::point::compute(registry, &kind, &parse::to_json(&node), time_limit).map_err(|e| match e {
+        PointError::Failed(failed) => CliError::TaskFailed(failed),
         invalid => CliError::usage(invalid.to_string()),
     })?;
     let t = &out.table;

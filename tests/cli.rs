@@ -140,6 +140,30 @@ fn point_rejects_a_repeated_parameter_and_names_the_kind_of_a_missing_one() {
 }
 
 #[test]
+fn point_is_guarded_as_a_task_of_a_run() {
+    let s = Scratch::new("point-guard");
+    // Held to a time limit (its kind's, or --time-limit): stopped, exit 1 as a failed task.
+    let t0 = std::time::Instant::now();
+    let out = s.repro(&["point", "util.sleep", "x=1", "ms=60000", "--time-limit", "0.3"]);
+    assert!(t0.elapsed().as_secs_f64() < 30.0);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the point was not computed: timed out: past its time limit of 0.3 s"), "{err}");
+    // A panic is contained and reported, exit 1 (it aborted the command before).
+    let out = s.repro(&["point", "util.fail", "message=boom", "panic=true"]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the point was not computed: panicked: boom"), "{err}");
+    // A solver's own panic on an absurd domain: contained as in a run.
+    let out = s.repro(&["point", "bem.sweep", "lambda=1", "W=1", "k=0.1", "V0=1", "half_length=1e300"]);
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    // A failure the kind returns is a failed task too.
+    let out = s.repro(&["point", "util.fail", "message=no"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("the point was not computed: no"));
+}
+
+#[test]
 fn kinds_describes_a_kind_s_parameters() {
     let s = Scratch::new("kinds-describe");
     let out = s.repro(&["kinds", "bem.sweep"]);

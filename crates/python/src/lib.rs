@@ -157,7 +157,7 @@ fn columns<'py>(py: Python<'py>, t: &repro::pipeline::table::Table) -> PyResult<
 fn point<'py>(py: Python<'py>, kind: &str, params_json: &str) -> PyResult<Bound<'py, PyDict>> {
     let params: serde_json::Value =
         serde_json::from_str(params_json).map_err(|e| error(py, "InvalidParameter", (format!("parameters: {e}"),)))?;
-    let out = interruptible(py, None, None, || repro::point::compute(registry(), kind, &params))?
+    let out = interruptible(py, None, None, || repro::point::compute(registry(), kind, &params, None))?
         .map_err(|e| point_error(py, e))?;
     columns(py, &out.table)
 }

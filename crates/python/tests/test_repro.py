@@ -142,6 +142,7 @@ def test_run_returns_the_report_and_tables(tmp_path):
     assert (t["inv_k"] == 3).all() and len(t) == 5
     assert r.report["overrides"] == ["persson.inv_k=3"]
     assert (tmp_path / "t" / "persson.parquet").exists()
+    assert r.verdict is None  # no claims in this pipeline
     again = repro.run(good, cache=tmp_path / "cache", figures=tmp_path / "f", tables=tmp_path / "t", set={"persson.inv_k": 3})
     assert (again.computed, again.cached) == (0, 5)
 
@@ -219,3 +220,31 @@ def test_the_type_stubs_are_current_and_declare_every_public_name():
         assert f"def {name}(" in committed or f"class {name}" in committed or f" as {name}," in committed, name
     # Each kind's parameters are keywords of its overload, `lambda` as `lambda_`.
     assert 'kind: Literal["bem.pulloff"]' in committed and "lambda_: float = ..." in committed
+
+
+def test_progress_reaches_a_tqdm_bar_task_by_task(tmp_path, monkeypatch):
+    import types
+
+    seen = []
+
+    class FakeBar:
+        def __init__(self, total, desc, unit, leave):
+            self.total, self.n, self.closed = total, 0, False
+
+        def refresh(self):
+            seen.append((self.n, self.total))
+
+        def close(self):
+            self.closed = True
+
+    fake = types.ModuleType("tqdm.auto")
+    fake.tqdm = FakeBar
+    monkeypatch.setitem(sys.modules, "tqdm", types.ModuleType("tqdm"))
+    monkeypatch.setitem(sys.modules, "tqdm.auto", fake)
+    repro.sweep("util.sleep", x=[1, 2, 3, 4], ms=150, cache=tmp_path / "cache", jobs=2, progress=True)
+    assert seen[-1] == (4, 4), seen
+    assert all(b >= a for a, b in zip([n for n, _ in seen], [n for n, _ in seen][1:]))
+    # Silent when asked.
+    seen.clear()
+    repro.sweep("util.sleep", x=[5, 6], cache=tmp_path / "cache", progress=False)
+    assert seen == []

@@ -21,7 +21,7 @@ import sys
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
 
-from . import _repro
+from . import _repro, errors
 from .errors import (
     CacheBusy,
     CacheError,
@@ -36,26 +36,8 @@ from .errors import (
 
 __version__ = _repro.__version__
 
-__all__ = [
-    "kinds",
-    "describe",
-    "point",
-    "sweep",
-    "run",
-    "Run",
-    "KindDescription",
-    "Param",
-    "Column",
-    "ReproError",
-    "InvalidParameter",
-    "UnknownKind",
-    "InvalidPipeline",
-    "UsageError",
-    "TaskFailed",
-    "NotConverged",
-    "CacheError",
-    "CacheBusy",
-]
+__all__ = ["kinds", "describe", "point", "sweep", "run", "Run", "KindDescription", "Param", "Column"]
+__all__ += errors.__all__
 
 #: The cache folder used when a call names none: ``$REPRO_CACHE``, else ``cache`` in the
 #: working folder (the command line's default).
@@ -410,6 +392,12 @@ class Run:
     @property
     def notes(self) -> List[str]:
         return list(self.report.get("notes", []))
+
+    @property
+    def verdict(self) -> Optional[str]:
+        """The claims' verdict line (``"44 of 55 thesis claims reproduced, ..."``), when the
+        run checked claims."""
+        return next((n for n in self.notes if " thesis claims reproduced" in n), None)
 
     @property
     def published(self) -> List[str]:

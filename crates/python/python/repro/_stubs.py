@@ -7,8 +7,10 @@ Regenerate after a kind's parameters change: ``python3 -m repro._stubs >
 crates/python/python/repro/__init__.pyi`` (a test checks the committed file is current).
 """
 
+import dataclasses
 import keyword
 import textwrap
+import typing
 
 import repro
 
@@ -36,33 +38,7 @@ from .errors import (
 __version__: str
 DEFAULT_CACHE: str
 
-@dataclass(frozen=True)
-class Param:
-    name: str
-    type: str
-    required: bool
-    default: Any
-    range: str
-    sweepable: bool
-    meaning: str
-
-@dataclass(frozen=True)
-class Column:
-    name: str
-    unit: str
-    meaning: str
-
-@dataclass(frozen=True)
-class KindDescription:
-    name: str
-    version: int
-    doc: str
-    time_limit_s: float
-    params: List[Param]
-    columns: List[Column]
-    def param(self, name: str) -> Param: ...
-    def column(self, name: str) -> Column: ...
-
+{dataclasses}
 class Run:
     report: Dict[str, Any]
     failures: List[str]
@@ -79,6 +55,8 @@ class Run:
     def failed(self) -> int: ...
     @property
     def notes(self) -> List[str]: ...
+    @property
+    def verdict(self) -> Optional[str]: ...
     @property
     def published(self) -> List[str]: ...
     @property
@@ -107,6 +85,28 @@ def run(
     raise_on_failure: bool = True,
 ) -> Run: ...
 '''
+
+def annotation(t) -> str:
+    """A field's type as the stub writes it: `str`, `Any`, `List[Param]`."""
+    if isinstance(t, type):
+        return t.__name__
+    return str(t).replace("typing.", "").replace("repro.", "")
+
+
+def dataclass_stubs() -> str:
+    """The stub of each dataclass of the API, from its fields and public methods."""
+    out = []
+    for cls in (repro.Param, repro.Column, repro.KindDescription):
+        lines = ["@dataclass(frozen=True)", f"class {cls.__name__}:"]
+        lines += [f"    {f.name}: {annotation(f.type)}" for f in dataclasses.fields(cls)]
+        for name, fn in vars(cls).items():
+            if callable(fn) and not name.startswith("_"):
+                hints = typing.get_type_hints(fn)
+                args = ", ".join(f"{a}: {annotation(hints[a])}" for a in list(fn.__code__.co_varnames)[1 : fn.__code__.co_argcount])
+                lines.append(f"    def {name}(self, {args}) -> {annotation(hints['return'])}: ...")
+        out.append("\n".join(lines) + "\n")
+    return "\n".join(out)
+
 
 TYPES = {"number": "float", "integer": "int", "boolean": "bool", "string": "str"}
 
@@ -163,7 +163,7 @@ def overload(d, fn: str) -> str:
 
 
 def render() -> str:
-    out = [HEAD]
+    out = [HEAD.replace("{dataclasses}", dataclass_stubs())]
     for fn in ("point", "sweep"):
         for name in repro.kinds():
             out.append(overload(repro.describe(name), fn))
