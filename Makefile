@@ -31,7 +31,7 @@ test:
 # then its tests (pytest) against the command line and the example script.
 python-test: build
 	[ -x $(PYENV)/bin/python ] || $(PYTHON) -m venv --system-site-packages $(PYENV)
-	$(PYENV)/bin/python -m pip install --quiet --disable-pip-version-check ./crates/python pytest numpy pandas pyarrow matplotlib
+	$(PYENV)/bin/python -m pip install --quiet --disable-pip-version-check ./crates/python pytest numpy pandas pyarrow polars matplotlib
 	REPRO_BIN=$(CURDIR)/target/debug/repro $(PYENV)/bin/python -m pytest -q crates/python/tests
 
 # Every committed figure is what the code produces: the pipeline regenerated from an empty

@@ -199,14 +199,18 @@ fn run_pipeline<'py>(
     Ok((json, tables, failures(&report)))
 }
 
-fn cache_options(cache: PathBuf, jobs: Option<usize>, progress: bool) -> RunOptions {
-    RunOptions { cache_dir: cache, jobs, progress, lock: LockMode::Wait, ..Default::default() }
+/// The options every call shares: the cache, the threads, the command line's progress
+/// bars, and whether to wait for another process holding the cache (else `CacheBusy`).
+fn cache_options(cache: PathBuf, jobs: Option<usize>, progress: bool, wait: bool) -> RunOptions {
+    let lock = if wait { LockMode::Wait } else { LockMode::Refuse };
+    RunOptions { cache_dir: cache, jobs, progress, lock, ..Default::default() }
 }
 
 /// A sweep of one kind: a pipeline of one stage, named after the kind, whose parameters
 /// `params_json` gives as a pipeline file does (a list sweeps a sweepable parameter).
 #[pyfunction]
-#[pyo3(signature = (kind, params_json, cache, jobs=None, progress=false, on_progress=None))]
+#[pyo3(signature = (kind, params_json, cache, jobs=None, progress=false, on_progress=None, wait=true))]
+#[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
     kind: &str,
@@ -215,6 +219,7 @@ fn sweep<'py>(
     jobs: Option<usize>,
     progress: bool,
     on_progress: Option<Bound<'py, PyAny>>,
+    wait: bool,
 ) -> PyResult<(String, Bound<'py, PyDict>, Vec<String>)> {
     let r = registry();
     if r.get(kind).is_none() {
@@ -231,13 +236,13 @@ fn sweep<'py>(
         let messages: Vec<String> = inv.0.iter().map(|d| d.message.clone()).collect();
         error(py, "InvalidParameter", (messages.join("; "),))
     })?;
-    run_pipeline(py, &p, cache_options(cache, jobs, progress), on_progress.as_ref())
+    run_pipeline(py, &p, cache_options(cache, jobs, progress, wait), on_progress.as_ref())
 }
 
 /// A run of a pipeline file: its targets (all stages if none) and what they need, with
 /// `overrides` ("stage.param=value", the value YAML) set as `repro run -S` sets them.
 #[pyfunction]
-#[pyo3(signature = (pipeline, targets, overrides, cache, figures, tables, jobs=None, progress=false, dry_run=false, force=Vec::new(), on_progress=None))]
+#[pyo3(signature = (pipeline, targets, overrides, cache, figures, tables, jobs=None, progress=false, dry_run=false, force=Vec::new(), on_progress=None, wait=true))]
 #[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
@@ -252,6 +257,7 @@ fn run<'py>(
     dry_run: bool,
     force: Vec<String>,
     on_progress: Option<Bound<'py, PyAny>>,
+    wait: bool,
 ) -> PyResult<(String, Bound<'py, PyDict>, Vec<String>)> {
     let overrides = overrides
         .iter()
@@ -265,7 +271,7 @@ fn run<'py>(
         dry_run,
         force,
         targets,
-        ..cache_options(cache, jobs, progress)
+        ..cache_options(cache, jobs, progress, wait)
     };
     run_pipeline(py, &p, opts, on_progress.as_ref())
 }

@@ -248,3 +248,27 @@ def test_progress_reaches_a_tqdm_bar_task_by_task(tmp_path, monkeypatch):
     seen.clear()
     repro.sweep("util.sleep", x=[5, 6], cache=tmp_path / "cache", progress=False)
     assert seen == []
+
+
+def test_a_busy_cache_is_waited_for_or_refused(repro_bin, tmp_path):
+    good = tmp_path / "slow.yaml"
+    good.write_text("stages:\n  - name: slow\n    kind: util.sleep\n    params: {x: [1, 2], ms: 1500}\n")
+    cache = tmp_path / "cache"
+    holder = subprocess.Popen([repro_bin, "run", str(good), "-q", "--cache", str(cache), "--figures", str(tmp_path / "f"), "--tables", str(tmp_path / "t")])
+    try:
+        time.sleep(0.5)
+        with pytest.raises(repro.CacheBusy, match="pid"):
+            repro.sweep("util.sleep", x=3, cache=cache, wait=False)
+        # Waited for: the holder's points are then cache hits.
+        df = repro.sweep("util.sleep", x=[1, 2], ms=1500, cache=cache)
+        assert df.attrs["report"]["counts"] == {"cached": 2}
+    finally:
+        holder.wait(timeout=60)
+
+
+def test_tables_as_polars_and_arrow(tmp_path):
+    pl = pytest.importorskip("polars")
+    df = repro.sweep("theory.persson", inv_k=2, V0=[0.5, 1], cache=tmp_path / "cache", backend="polars")
+    assert isinstance(df, pl.DataFrame) and df["mu_star"].len() == 2
+    t = repro.sweep("theory.persson", inv_k=2, V0=[0.5, 1], cache=tmp_path / "cache", backend="arrow")
+    assert t.num_rows == 2 and b"repro.columns" in t.schema.metadata

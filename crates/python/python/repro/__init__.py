@@ -298,6 +298,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = "pandas",
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     **kw,
 ):
     """Computes ``kind`` over every combination of its swept parameters, in parallel
@@ -312,9 +313,10 @@ def sweep(
     pandas, ``df.attrs`` holds the columns' ``units`` and ``meanings`` and the ``report``
     of the run (which points were computed, which came from the cache, and why).
 
-    Raises :class:`InvalidParameter` before any work, :class:`TaskFailed` if a point
-    failed (the others are cached), :class:`NotConverged` if asked and a row did not
-    converge. Ctrl-C stops within a second: finished points stay cached, a rerun computes
+    Another process holding the cache is waited for; with ``wait=False``,
+    :class:`CacheBusy` is raised instead. Raises :class:`InvalidParameter` before any work,
+    :class:`TaskFailed` if a point failed (the others are cached), :class:`NotConverged`
+    if asked and a row did not converge. Ctrl-C stops within a second: finished points stay cached, a rerun computes
     the rest."""
     bar = _Progress(progress, kind)
     try:
@@ -325,6 +327,7 @@ def sweep(
             jobs,
             bar.native,
             bar.callback(),
+            wait,
         )
     finally:
         bar.close()
@@ -451,6 +454,7 @@ def run(
     progress: Optional[bool] = None,
     backend: str = "pandas",
     raise_on_failure: bool = True,
+    wait: bool = True,
 ) -> Run:
     """Runs a pipeline file as ``repro run`` does: its ``targets`` (every stage if none)
     and what they need, computing only what ``cache`` lacks, publishing into ``figures``
@@ -459,7 +463,8 @@ def run(
 
     Returns a :class:`Run`. Raises :class:`InvalidPipeline` (with each error's file, line
     and column) or :class:`UsageError` before any work; :class:`TaskFailed` (with the
-    ``Run``) when a task failed, unless ``raise_on_failure`` is false."""
+    ``Run``) when a task failed, unless ``raise_on_failure`` is false; :class:`CacheBusy`
+    when another process holds the cache and ``wait`` is false (else it is waited for)."""
     overrides = []
     for k, v in (set or {}).items():
         value = v if isinstance(v, str) else _override_value(v)
@@ -478,6 +483,7 @@ def run(
             dry_run,
             list(force),
             bar.callback(),
+            wait,
         )
     finally:
         bar.close()

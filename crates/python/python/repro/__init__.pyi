@@ -93,6 +93,7 @@ def run(
     progress: Optional[bool] = None,
     backend: str = "pandas",
     raise_on_failure: bool = True,
+    wait: bool = True,
 ) -> Run: ...
 
 @overload
@@ -1452,6 +1453,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V0_range: Any = ...,
     W: Sweep = ...,
     grid: int = ...,
@@ -1508,6 +1510,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V0: Sweep = ...,
     W: Sweep = ...,
     half_length: Optional[float] = ...,
@@ -1608,6 +1611,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V: Sweep = ...,
     k: Sweep = ...,
     lambda_: Sweep = ...,
@@ -1670,6 +1674,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V0: Sweep = ...,
     W: Sweep = ...,
     half_length: Optional[float] = ...,
@@ -1784,6 +1789,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     candidates: Any = ...,
     default: str = ...,
     error: Optional[str] = ...,
@@ -1842,6 +1848,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     stages: Any = ...,
 ) -> Any:
     """Summary of a stress grid: per stage points, converged, max iterations, worst residual
@@ -1869,6 +1876,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     docs: str = ...,
     expect: Any = ...,
     id: str = ...,
@@ -1926,6 +1934,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     claims: Any = ...,
 ) -> Any:
     """The verdicts of claim stages in one table, and the run's verdict line
@@ -1950,6 +1959,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     apex_force: Sweep = ...,
     dimple: Sweep = ...,
     dissipation: bool = ...,
@@ -2034,6 +2044,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     gamma_over_Eh: Sweep = ...,
     h_hi: float = ...,
     h_lo: float = ...,
@@ -2090,6 +2101,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     gamma_max: float = ...,
     growth: float = ...,
     guess: float = ...,
@@ -2160,6 +2172,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     gamma_c: str = ...,
     limit: Optional[str] = ...,
 ) -> Any:
@@ -2197,6 +2210,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     base: Any = ...,
     bisections: int = ...,
     delta_max: float = ...,
@@ -2315,6 +2329,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     E: float = ...,
     R: float = ...,
     grading: float = ...,
@@ -2367,6 +2382,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     cycle: Any = ...,
     points: Any = ...,
 ) -> Any:
@@ -2413,6 +2429,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     height: int = ...,
     layers: Any = ...,
     legend: Any = ...,
@@ -2467,6 +2484,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     expected_slope: Optional[float] = ...,
     from_: str = ...,
     group_by: Optional[str] = ...,
@@ -2510,6 +2528,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     from_: str = ...,
     linear_range: Optional[Any] = ...,
     min_points: int = ...,
@@ -2563,6 +2582,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     P_bar: float = ...,
     n: int = ...,
 ) -> Any:
@@ -2591,6 +2611,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     n: int = ...,
     z_max: float = ...,
     z_min: float = ...,
@@ -2621,6 +2642,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     lambda_: Sweep = ...,
 ) -> Any:
     """2D line-contact pull-off W: Maugis-Dugdale, JKR -3(pi/16)^(1/3), rigid Lennard-Jones -2.434
@@ -2651,6 +2673,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     A_max: float = ...,
     A_min: float = ...,
     lambda_: Sweep = ...,
@@ -2687,6 +2710,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     lambda_: Sweep = ...,
 ) -> Any:
     """Maugis-Dugdale pull-off load (minimum of P_bar over A_bar); JKR -3/2, DMT -2
@@ -2716,6 +2740,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V0: Sweep = ...,
     inv_k: Sweep = ...,
     rel_tol: float = ...,
@@ -2751,6 +2776,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     V_PB: Sweep = ...,
     k: Sweep = ...,
     per_decade: Optional[int] = ...,
@@ -2797,6 +2823,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     inv_k: Sweep = ...,
     rel_tol: float = ...,
 ) -> Any:
@@ -2826,6 +2853,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     A_max: float = ...,
     A_min: float = ...,
     n: int = ...,
@@ -2854,6 +2882,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     message: str = ...,
     panic: bool = ...,
     x: Sweep = ...,
@@ -2881,6 +2910,7 @@ def sweep(
     progress: Optional[bool] = None,
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
+    wait: bool = True,
     ms: int = ...,
     round: Optional[int] = ...,
     x: Sweep = ...,
@@ -2901,4 +2931,4 @@ def sweep(
     """
 
 @overload
-def sweep(kind: str, params: Optional[Mapping[str, Any]] = None, /, *, cache: Optional[Path] = None, jobs: Optional[int] = None, progress: Optional[bool] = None, backend: str = 'pandas', raise_on_unconverged: bool = False, **kw: Any) -> Any: ...
+def sweep(kind: str, params: Optional[Mapping[str, Any]] = None, /, *, cache: Optional[Path] = None, jobs: Optional[int] = None, progress: Optional[bool] = None, backend: str = 'pandas', raise_on_unconverged: bool = False, wait: bool = True, **kw: Any) -> Any: ...

@@ -83,6 +83,7 @@ def run(
     progress: Optional[bool] = None,
     backend: str = "pandas",
     raise_on_failure: bool = True,
+    wait: bool = True,
 ) -> Run: ...
 '''
 
@@ -152,6 +153,7 @@ def overload(d, fn: str) -> str:
             "progress: Optional[bool] = None",
             "backend: str = 'pandas'",
             "raise_on_unconverged: bool = False",
+            "wait: bool = True",
         ]
     )
     params = [f"{keyword_name(p.name)}: {py_type(p.type, p.sweepable, fn == 'sweep')} = ..." for p in d.params]
@@ -171,7 +173,7 @@ def render() -> str:
             "raise_on_unconverged: bool = False, **kw: Any) -> Dict[str, Any]: ..."
             if fn == "point"
             else "cache: Optional[Path] = None, jobs: Optional[int] = None, progress: Optional[bool] = None, "
-            "backend: str = 'pandas', raise_on_unconverged: bool = False, **kw: Any) -> Any: ..."
+            "backend: str = 'pandas', raise_on_unconverged: bool = False, wait: bool = True, **kw: Any) -> Any: ..."
         )
         out.append(f"@overload\ndef {fn}(kind: str, params: Optional[Mapping[str, Any]] = None, /, *, {generic}\n")
     return "\n".join(out)
