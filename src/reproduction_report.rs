@@ -322,9 +322,26 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
         }
     }
 
-    // Cost and timeline.
+    h.push_str(&cost_section(run.as_ref()));
+    h.push_str(&stages_section(p, code_versions));
+    h.push_str(&provenance_section(src, &pipeline_bytes, commit, dirty));
+    h.push_str("</body></html>\n");
+
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    let tmp = out.with_extension("html.tmp");
+    std::fs::write(&tmp, h).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, out).with_context(|| format!("writing {}", out.display()))?;
+    Ok((shown, n))
+}
+
+/// The report's cost section: the run's tasks computed, cached and failed, the task time
+/// per stage and the timeline.
+fn cost_section(run: Option<&RunReport>) -> String {
+    let mut h = String::new();
     h.push_str("<h2 id=\"cost\">Cost of the last run</h2>\n");
-    match &run {
+    match run {
         None => h.push_str("<p>No run report found.</p>\n"),
         Some(r) => {
             let computed = r.count(Status::Computed);
@@ -362,7 +379,12 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
         }
     }
 
-    // Stage graph.
+    h
+}
+
+/// The report's stage graph and the table of every stage (kind, code version, what it reads).
+fn stages_section(p: &Pipeline, code_versions: &BTreeMap<String, u32>) -> String {
+    let mut h = String::new();
     h.push_str("<h2 id=\"graph\">Stages</h2>\n");
     h.push_str(&stage_graph(p));
     h.push_str("<details><summary>");
@@ -381,14 +403,19 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     }
     h.push_str("</table></details>\n");
 
-    // Provenance.
+    h
+}
+
+/// The report's provenance: repro's version, the pipeline file and its hash, the git commit.
+fn provenance_section(src: &Sources, pipeline_bytes: &[u8], commit: Option<String>, dirty: bool) -> String {
+    let mut h = String::new();
     h.push_str("<h2 id=\"provenance\">Provenance</h2>\n<table>");
     let _ = writeln!(h, "<tr><th>repro</th><td>{}</td></tr>", env!("CARGO_PKG_VERSION"));
     let _ = writeln!(
         h,
         "<tr><th>pipeline</th><td>{} (blake3 {})</td></tr>",
         esc(&src.pipeline_file.display().to_string()),
-        blake3::hash(&pipeline_bytes).to_hex()
+        blake3::hash(pipeline_bytes).to_hex()
     );
     let _ = writeln!(
         h,
@@ -398,15 +425,8 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
             if dirty { " (with uncommitted changes)" } else { "" }
         ))
     );
-    h.push_str("</table>\n</body></html>\n");
-
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    }
-    let tmp = out.with_extension("html.tmp");
-    std::fs::write(&tmp, h).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, out).with_context(|| format!("writing {}", out.display()))?;
-    Ok((shown, n))
+    h.push_str("</table>\n");
+    h
 }
 
 /// The stage graph as SVG: a column per depth (the longest chain of stages before it), a box

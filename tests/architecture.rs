@@ -252,3 +252,98 @@ fn the_chapter3_bench_runs_every_shell_stage_of_the_thesis_pipeline() {
     assert!(shell.len() >= 20, "{shell:?}");
     assert_eq!(listed, shell);
 }
+
+/// A line's code with its string and character literals and its `//` comment removed, so
+/// that the braces left are the code's.
+fn braces_of(line: &str) -> (usize, usize) {
+    let (mut open, mut close) = (0, 0);
+    let mut chars = line.chars().peekable();
+    let mut in_str = false;
+    while let Some(c) = chars.next() {
+        match (in_str, c) {
+            (true, '\\') => {
+                chars.next();
+            }
+            (true, '"') => in_str = false,
+            (true, _) => {}
+            (false, '"') => in_str = true,
+            (false, '/') if chars.peek() == Some(&'/') => break,
+            // A character literal ('{', '\'', '\n'); a lifetime (`'a`) has no closing quote.
+            (false, '\'') => {
+                let rest: String = chars.clone().take(3).collect();
+                if rest.starts_with('\\') {
+                    chars.nth(2);
+                } else if rest.chars().nth(1) == Some('\'') {
+                    chars.nth(1);
+                }
+            }
+            (false, '{') => open += 1,
+            (false, '}') => close += 1,
+            _ => {}
+        }
+    }
+    (open, close)
+}
+
+/// The functions of a source file outside its test module: (line, name, length in lines).
+fn function_lengths(path: &Path) -> Vec<(usize, String, usize)> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let t = line.trim_start();
+        // `pub`, `pub(crate)`, `pub(super)`, `pub(in path)`.
+        let t = match t.strip_prefix("pub(") {
+            Some(r) => r.split_once(") ").map_or(t, |(_, rest)| rest),
+            None => t.strip_prefix("pub ").unwrap_or(t),
+        };
+        let t = t.strip_prefix("const ").or_else(|| t.strip_prefix("unsafe ")).unwrap_or(t);
+        let Some(rest) = t.strip_prefix("fn ") else { continue };
+        let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        let mut depth = 0i64;
+        let mut started = false;
+        for (j, l) in lines.iter().enumerate().skip(i) {
+            let (open, close) = braces_of(l);
+            if !started && open == 0 && l.contains(';') {
+                break; // a declaration without a body
+            }
+            started |= open > 0;
+            depth += open as i64 - close as i64;
+            if started && depth <= 0 {
+                out.push((i + 1, name.clone(), j - i + 1));
+                break;
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn no_function_outside_tests_is_longer_than_a_reader_can_hold_in_mind() {
+    const LIMIT: usize = 150;
+    let mut files = Vec::new();
+    for dir in ["src", "crates/pipeline/src", "crates/physics/src", "crates/python/src"] {
+        rust_files(Path::new(dir), &mut files);
+    }
+    let mut long = Vec::new();
+    let mut longest = 0;
+    for f in &files {
+        for (line, name, len) in function_lengths(f) {
+            longest = longest.max(len);
+            if len > LIMIT {
+                long.push(format!("{}:{line} {name}: {len} lines", f.display()));
+            }
+        }
+    }
+    assert!(long.is_empty(), "functions over {LIMIT} lines (split them along their phases):\n{}", long.join("\n"));
+    // The scan finds functions: the longest today is 144 lines (`figure::draw`).
+    assert!(longest > 100, "the function scan found nothing long ({longest} lines): is it reading the sources?");
+}
+
+#[test]
+fn the_brace_counter_ignores_strings_characters_and_comments() {
+    assert_eq!(braces_of(r#"let s = format!("{x} {{ }}"); // { not this"#), (0, 0));
+    assert_eq!(braces_of(r"if c == '{' || c == '\'' { f('}') }"), (1, 1));
+    assert_eq!(braces_of("fn f<'a>(x: &'a str) -> &'a str {"), (1, 0));
+}

@@ -23,7 +23,6 @@ use crate::report::{unix_ms, RunReport, Status, TaskRecord};
 use crate::slurm::{Coordinator, SlurmOptions};
 use crate::spec::{Pipeline, Stage};
 use crate::table::Table;
-use crate::task::TaskError;
 use anyhow::{Context, Result};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -174,6 +173,29 @@ pub fn run_keeping(
 ) -> Result<(RunReport, Vec<Completed>), RunError> {
     let start = Instant::now();
     let started_unix_ms = unix_ms();
+    let selected = selected_stages(p, opts)?;
+    let cache =
+        if opts.dry_run { Cache::open_read_only(&opts.cache_dir) } else { Cache::open(&opts.cache_dir, opts.lock)? };
+    let mut run = RunState::new(p, registry, opts, &cache, start)?;
+    let order: Vec<usize> = graph::topological_order(p).into_iter().filter(|i| selected.contains(i)).collect();
+    for stages_here in waves(p, &order, &run.index) {
+        let mut plans = run.plan_wave(&stages_here);
+        // Rounds: the stages' points, then the points adaptive stages add after each round.
+        for round in 0.. {
+            run.compute_round(&mut plans, round)?;
+            if !run.refine_adaptive(&mut plans, round) {
+                break;
+            }
+        }
+        run.assemble_wave(plans)?;
+    }
+    let _ = run.multi.clear();
+    run.finish(&order, started_unix_ms, start)
+}
+
+/// The stages a run selects: its targets and the stages they need (all, without targets);
+/// an unknown target or stage to force is a usage error.
+fn selected_stages(p: &Pipeline, opts: &RunOptions) -> Result<BTreeSet<usize>, RunError> {
     let mut target_idx = Vec::new();
     for t in &opts.targets {
         match p.stages.iter().position(|s| &s.name == t) {
@@ -186,40 +208,81 @@ pub fn run_keeping(
             return Err(UsageError(crate::parse::unknown_stage("--force", f, p)).into());
         }
     }
-    let selected: BTreeSet<usize> =
-        if target_idx.is_empty() { (0..p.stages.len()).collect() } else { graph::with_ancestors(p, &target_idx) };
-    let cache =
-        if opts.dry_run { Cache::open_read_only(&opts.cache_dir) } else { Cache::open(&opts.cache_dir, opts.lock)? };
-    let pid = pipeline_id(p);
-    let mut local = Local::new(opts.jobs, start)?;
-    let multi = indicatif::MultiProgress::with_draw_target(if opts.progress {
-        indicatif::ProgressDrawTarget::stderr()
-    } else {
-        indicatif::ProgressDrawTarget::hidden()
-    });
+    Ok(if target_idx.is_empty() { (0..p.stages.len()).collect() } else { graph::with_ancestors(p, &target_idx) })
+}
 
-    let index: BTreeMap<&str, usize> = p.stages.iter().enumerate().map(|(i, s)| (s.name.as_str(), i)).collect();
-    let order: Vec<usize> = graph::topological_order(p).into_iter().filter(|i| selected.contains(i)).collect();
+/// The stages of `order` grouped in waves: a stage's wave is one more than that of the
+/// latest stage it needs.
+fn waves(p: &Pipeline, order: &[usize], index: &BTreeMap<&str, usize>) -> Vec<Vec<usize>> {
     let mut wave = vec![0usize; p.stages.len()];
-    for &i in &order {
+    for &i in order {
         for n in &p.stages[i].needs {
             let j = index[n.as_str()];
             wave[i] = wave[i].max(wave[j] + 1);
         }
     }
     let n_waves = order.iter().map(|&i| wave[i] + 1).max().unwrap_or(0);
-    let mut states: BTreeMap<usize, StageState> = BTreeMap::new();
-    let mut records: Vec<TaskRecord> = Vec::new();
-    let mut manifests: Vec<(usize, StageManifest)> = Vec::new();
-    let mut slurm: Option<Coordinator> = None;
+    (0..n_waves).map(|w| order.iter().copied().filter(|&i| wave[i] == w).collect()).collect()
+}
 
-    for w in 0..n_waves {
-        let stages_here: Vec<usize> = order.iter().copied().filter(|&i| wave[i] == w).collect();
-        let mut plans: BTreeMap<usize, StagePlan> = BTreeMap::new();
-        for &si in &stages_here {
-            let stage = &p.stages[si];
+/// What a run has settled so far, and what it computes with: the stages' states, the
+/// tasks' records, the manifests to write, and the backends.
+struct RunState<'a> {
+    p: &'a Pipeline,
+    registry: &'a Registry,
+    opts: &'a RunOptions,
+    cache: &'a Cache,
+    pid: String,
+    index: BTreeMap<&'a str, usize>,
+    states: BTreeMap<usize, StageState>,
+    records: Vec<TaskRecord>,
+    manifests: Vec<(usize, StageManifest)>,
+    local: Local,
+    slurm: Option<Coordinator<'a>>,
+    multi: indicatif::MultiProgress,
+}
+
+/// Per job, the points of each stage it needs: all of them, or for a stage read row by row,
+/// those that match the job's parameters.
+type JobNeeds = Vec<(String, Vec<usize>)>;
+
+impl<'a> RunState<'a> {
+    fn new(
+        p: &'a Pipeline,
+        registry: &'a Registry,
+        opts: &'a RunOptions,
+        cache: &'a Cache,
+        start: Instant,
+    ) -> Result<Self, RunError> {
+        let multi = indicatif::MultiProgress::with_draw_target(if opts.progress {
+            indicatif::ProgressDrawTarget::stderr()
+        } else {
+            indicatif::ProgressDrawTarget::hidden()
+        });
+        Ok(RunState {
+            p,
+            registry,
+            opts,
+            pid: pipeline_id(p),
+            index: p.stages.iter().enumerate().map(|(i, s)| (s.name.as_str(), i)).collect(),
+            cache,
+            states: BTreeMap::new(),
+            records: Vec::new(),
+            manifests: Vec::new(),
+            local: Local::new(opts.jobs, start)?,
+            slurm: None,
+            multi,
+        })
+    }
+
+    /// The plans of a wave's stages; a stage whose needs failed or were skipped is skipped,
+    /// one whose needs are unknown (a dry run) is unknown, and neither is planned.
+    fn plan_wave(&mut self, stages_here: &[usize]) -> BTreeMap<usize, StagePlan> {
+        let mut plans = BTreeMap::new();
+        for &si in stages_here {
+            let stage = &self.p.stages[si];
             let need_states: Vec<(&String, &StageState)> =
-                stage.needs.iter().map(|n| (n, &states[&index[n.as_str()]])).collect();
+                stage.needs.iter().map(|n| (n, &self.states[&self.index[n.as_str()]])).collect();
             let blocked: Vec<&str> = need_states
                 .iter()
                 .filter(|(_, s)| matches!(s, StageState::Failed | StageState::Skipped))
@@ -237,9 +300,9 @@ pub fn run_keeping(
                     (Status::Unknown, StageState::Unknown, Reason::UpstreamWouldRun)
                 };
                 for pt in &stage.points {
-                    records.push(TaskRecord::new(stage, &pt.label, None, status, Some(reason.clone())));
+                    self.records.push(TaskRecord::new(stage, &pt.label, None, status, Some(reason.clone())));
                 }
-                states.insert(si, state);
+                self.states.insert(si, state);
                 continue;
             }
             let inputs: BTreeMap<String, Hash> = need_states
@@ -253,7 +316,7 @@ pub fn run_keeping(
             let matched = stage
                 .matched
                 .iter()
-                .map(|m| match &states[&index[m.stage.as_str()]] {
+                .map(|m| match &self.states[&self.index[m.stage.as_str()]] {
                     StageState::Done { points, params, .. } => MatchedInput {
                         need: m.clone(),
                         upstream: points
@@ -268,7 +331,7 @@ pub fn run_keeping(
             plans.insert(
                 si,
                 StagePlan {
-                    prev: cache.read_manifest(&pid, &stage.name),
+                    prev: self.cache.read_manifest(&self.pid, &stage.name),
                     inputs,
                     matched,
                     points: stage.points.clone(),
@@ -276,6 +339,91 @@ pub fn run_keeping(
                     failed: false,
                 },
             );
+        }
+        plans
+    }
+
+    /// One round of a wave: the planner's answer for every point not yet settled (cached,
+    /// to compute, or the same task as another), and in a real run the tasks computed and
+    /// settled in their plans; a dry run records what would run.
+    fn compute_round(&mut self, plans: &mut BTreeMap<usize, StagePlan>, round: usize) -> Result<()> {
+        let crate::plan::Round { mut jobs, twins, cached } =
+            plan_round(self.p, self.registry, self.cache, plans, &self.opts.force, round);
+        self.records.extend(cached);
+        if self.opts.dry_run {
+            for j in &jobs {
+                let stage = &self.p.stages[j.stage];
+                let record =
+                    TaskRecord::new(stage, &j.label, Some(j.key.clone()), Status::WouldRun, Some(j.reason.clone()));
+                self.records.push(record);
+            }
+            for (j, first) in &twins {
+                let reason = twin_reason(self.p, &jobs[*first]);
+                let stage = &self.p.stages[j.stage];
+                self.records.push(TaskRecord::new(stage, &j.label, Some(j.key.clone()), Status::Cached, Some(reason)));
+            }
+            return Ok(());
+        }
+        if jobs.is_empty() {
+            return Ok(());
+        }
+        let outcomes = self.compute_jobs(plans, &jobs, round)?;
+        // A twin takes its job's outcome.
+        for (j, first) in &twins {
+            let (out, dt) = (outcomes[*first].result.clone(), outcomes[*first].wall_time_s);
+            let mut r = TaskRecord::new(
+                &self.p.stages[j.stage],
+                &j.label,
+                Some(j.key.clone()),
+                if out.is_ok() { Status::Cached } else { Status::Failed },
+                Some(twin_reason(self.p, &jobs[*first])),
+            );
+            if let Err(e) = &out {
+                r.failed_with(e.clone());
+            }
+            self.records.push(r);
+            plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
+        }
+        for (j, settled) in jobs.iter_mut().zip(outcomes) {
+            let (out, dt) = (settled.result, settled.wall_time_s);
+            j.ran_on = settled.ran_on;
+            let stage = &self.p.stages[j.stage];
+            let mut r = TaskRecord::new(
+                stage,
+                &j.label,
+                Some(j.key.clone()),
+                if out.is_ok() { Status::Computed } else { Status::Failed },
+                Some(j.reason.clone()),
+            );
+            r.wall_time_s = dt;
+            r.started_s = settled.started_s;
+            if let Err(e) = &out {
+                r.failed_with(e.clone());
+            }
+            r.ran_on = j.ran_on.clone();
+            self.records.push(r);
+            plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
+        }
+        Ok(())
+    }
+
+    /// Computes a round's jobs on the run's backend, each with the tables it reads, a
+    /// progress bar per stage; returns their outcomes in the jobs' order.
+    fn compute_jobs(
+        &mut self,
+        plans: &BTreeMap<usize, StagePlan>,
+        jobs: &[crate::plan::Job],
+        round: usize,
+    ) -> Result<Vec<crate::backend::Settled>> {
+        let (p, states, index) = (self.p, &self.states, &self.index);
+        let mut bars: BTreeMap<usize, indicatif::ProgressBar> = BTreeMap::new();
+        for j in jobs {
+            bars.entry(j.stage).or_insert_with(|| {
+                let n = jobs.iter().filter(|k| k.stage == j.stage).count();
+                let name = &p.stages[j.stage].name;
+                let label = if round == 0 { name.clone() } else { format!("{name} (round {round})") };
+                make_bar(&self.multi, &label, n)
+            });
         }
         // The whole tables the stages need, for computing (the rows of the stages read row
         // by row are assembled per task).
@@ -286,238 +434,118 @@ pub fn run_keeping(
                     .needs
                     .iter()
                     .filter(|n| p.stages[si].matched(n).is_none())
-                    .map(|n| match &states[&index[n.as_str()]] {
-                        StageState::Done { table, .. } => (n.clone(), table),
-                        _ => unreachable!(),
-                    })
+                    .map(|n| (n.clone(), done_table(states, index, n)))
                     .collect();
                 (si, tables)
             })
             .collect();
+        let job_needs: Vec<JobNeeds> = jobs.iter().map(|j| job_needs(p, states, index, &plans[&j.stage], j)).collect();
+        let job_rows: Vec<BTreeMap<String, Table>> = jobs
+            .iter()
+            .zip(&job_needs)
+            .map(|(j, needs)| matched_rows(p, states, index, j, needs))
+            .collect::<Result<_>>()?;
+        let job_inputs: Vec<Inputs> = jobs
+            .iter()
+            .zip(&job_rows)
+            .map(|(j, rows)| {
+                let mut tables = input_tables[&j.stage].clone();
+                tables.extend(rows.iter().map(|(n, t)| (n.clone(), t)));
+                Inputs { tables }
+            })
+            .collect();
+        let tasks: Vec<Task> = jobs
+            .iter()
+            .zip(&job_inputs)
+            .zip(&job_needs)
+            .map(|((j, inputs), needs)| {
+                let stage = &p.stages[j.stage];
+                let kind = self.registry.get(&stage.kind).expect("validated kinds");
+                Task {
+                    key: &j.key,
+                    kind,
+                    params: &j.params,
+                    inputs,
+                    input_keys: needs
+                        .iter()
+                        .map(|(n, selected)| {
+                            let points = done_points(states, index, n);
+                            (n.clone(), selected.iter().map(|&i| points[i].0.clone()).collect())
+                        })
+                        .collect(),
+                    time_limit: time_limit(stage, kind, self.opts),
+                }
+            })
+            .collect();
+        let backend: &mut dyn Backend = match &self.opts.executor {
+            Executor::Local => &mut self.local,
+            Executor::Slurm(so) => match &mut self.slurm {
+                Some(c) => c,
+                None => self.slurm.insert(Coordinator::new(self.cache, so.clone())?),
+            },
+        };
+        if let Some(c) = &self.opts.counter {
+            c.total.fetch_add(jobs.len(), std::sync::atomic::Ordering::Relaxed);
+        }
+        let counter = &self.opts.counter;
+        let outcomes = backend.compute(&tasks, self.registry, self.cache, &|i| {
+            bars[&jobs[i].stage].inc(1);
+            if let Some(c) = counter {
+                c.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            }
+        })?;
+        for bar in bars.values() {
+            bar.finish();
+        }
+        Ok(outcomes)
+    }
 
-        // Rounds: the stages' points, then the points adaptive stages add after each round.
-        for round in 0.. {
-            let crate::plan::Round { mut jobs, twins, cached } =
-                plan_round(p, registry, &cache, &mut plans, &opts.force, round);
-            records.extend(cached);
-            if opts.dry_run {
-                for j in &jobs {
-                    let stage = &p.stages[j.stage];
-                    records.push(TaskRecord::new(
-                        stage,
-                        &j.label,
-                        Some(j.key.clone()),
-                        Status::WouldRun,
-                        Some(j.reason.clone()),
-                    ));
-                }
-                for (j, first) in &twins {
-                    let reason = twin_reason(p, &jobs[*first]);
-                    records.push(TaskRecord::new(
-                        &p.stages[j.stage],
-                        &j.label,
-                        Some(j.key.clone()),
-                        Status::Cached,
-                        Some(reason),
-                    ));
-                }
-            } else if !jobs.is_empty() {
-                let mut bars: BTreeMap<usize, indicatif::ProgressBar> = BTreeMap::new();
-                for j in &jobs {
-                    bars.entry(j.stage).or_insert_with(|| {
-                        let n = jobs.iter().filter(|k| k.stage == j.stage).count();
-                        let name = &p.stages[j.stage].name;
-                        let label = if round == 0 { name.clone() } else { format!("{name} (round {round})") };
-                        make_bar(&multi, &label, n)
-                    });
-                }
-                // Per job, the points of each stage it needs: all of them, or for a stage read
-                // row by row, those that match it.
-                let job_needs: Vec<Vec<(String, Vec<usize>)>> = jobs
-                    .iter()
-                    .map(|j| {
-                        let stage = &p.stages[j.stage];
-                        let plan = &plans[&j.stage];
-                        stage
-                            .needs
-                            .iter()
-                            .map(|n| {
-                                match (&states[&index[n.as_str()]], plan.matched.iter().find(|m| &m.need.stage == n)) {
-                                    (StageState::Done { .. }, Some(m)) => (n.clone(), m.select(&j.params)),
-                                    (StageState::Done { points, .. }, None) => (n.clone(), (0..points.len()).collect()),
-                                    _ => unreachable!("a stage runs after the stages it needs are done"),
-                                }
-                            })
-                            .collect()
-                    })
-                    .collect();
-                // The rows each job reads of the stages read row by row.
-                let job_rows: Vec<BTreeMap<String, Table>> = jobs
-                    .iter()
-                    .zip(&job_needs)
-                    .map(|(j, needs)| {
-                        needs
-                            .iter()
-                            .filter(|(n, _)| p.stages[j.stage].matched(n).is_some())
-                            .map(|(n, selected)| {
-                                let StageState::Done { points, .. } = &states[&index[n.as_str()]] else {
-                                    unreachable!()
-                                };
-                                let mut t = Table::new();
-                                for &i in selected {
-                                    t.append(&points[i].1.table)
-                                        .with_context(|| format!("assembling the rows of stage `{n}`"))?;
-                                }
-                                Ok((n.clone(), t))
-                            })
-                            .collect::<Result<_>>()
-                    })
-                    .collect::<Result<_>>()?;
-                let job_inputs: Vec<Inputs> = jobs
-                    .iter()
-                    .zip(&job_rows)
-                    .map(|(j, rows)| {
-                        let mut tables = input_tables[&j.stage].clone();
-                        tables.extend(rows.iter().map(|(n, t)| (n.clone(), t)));
-                        Inputs { tables }
-                    })
-                    .collect();
-                // Per job: its outcome, its wall time and when it started (seconds from the start of
-                // the run; not known for jobs run elsewhere).
-                let tasks: Vec<Task> = jobs
-                    .iter()
-                    .zip(&job_inputs)
-                    .zip(&job_needs)
-                    .map(|((j, inputs), needs)| {
-                        let stage = &p.stages[j.stage];
-                        let kind = registry.get(&stage.kind).expect("validated kinds");
-                        Task {
-                            key: &j.key,
-                            kind,
-                            params: &j.params,
-                            inputs,
-                            input_keys: needs
-                                .iter()
-                                .map(|(n, selected)| {
-                                    let StageState::Done { points, .. } = &states[&index[n.as_str()]] else {
-                                        unreachable!()
-                                    };
-                                    (n.clone(), selected.iter().map(|&i| points[i].0.clone()).collect())
-                                })
-                                .collect(),
-                            time_limit: time_limit(stage, kind, opts),
-                        }
-                    })
-                    .collect();
-                let backend: &mut dyn Backend = match &opts.executor {
-                    Executor::Local => &mut local,
-                    Executor::Slurm(so) => match &mut slurm {
-                        Some(c) => c,
-                        None => slurm.insert(Coordinator::new(&cache, so.clone())?),
-                    },
-                };
-                if let Some(c) = &opts.counter {
-                    c.total.fetch_add(jobs.len(), std::sync::atomic::Ordering::Relaxed);
-                }
-                let outcomes = backend.compute(&tasks, registry, &cache, &|i| {
-                    bars[&jobs[i].stage].inc(1);
-                    if let Some(c) = &opts.counter {
-                        c.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    }
-                })?;
-                drop(tasks);
-                for bar in bars.values() {
-                    bar.finish();
-                }
-                // A twin takes its job's outcome.
-                let twin_outcomes: Vec<(Result<Output, TaskError>, f64)> = twins
-                    .iter()
-                    .map(|(_, first)| (outcomes[*first].result.clone(), outcomes[*first].wall_time_s))
-                    .collect();
-                for ((j, first), (out, dt)) in twins.iter().zip(twin_outcomes) {
-                    let mut r = TaskRecord::new(
-                        &p.stages[j.stage],
-                        &j.label,
-                        Some(j.key.clone()),
-                        if out.is_ok() { Status::Cached } else { Status::Failed },
-                        Some(twin_reason(p, &jobs[*first])),
-                    );
-                    if let Err(e) = &out {
-                        r.failed_with(e.clone());
-                    }
-                    records.push(r);
-                    plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
-                }
-                for (j, settled) in jobs.iter_mut().zip(outcomes) {
-                    let (out, dt) = (settled.result, settled.wall_time_s);
-                    j.ran_on = settled.ran_on;
-                    let stage = &p.stages[j.stage];
-                    let mut r = TaskRecord::new(
-                        stage,
-                        &j.label,
-                        Some(j.key.clone()),
-                        if out.is_ok() { Status::Computed } else { Status::Failed },
-                        Some(j.reason.clone()),
-                    );
-                    r.wall_time_s = dt;
-                    r.started_s = settled.started_s;
-                    if let Err(e) = &out {
-                        r.failed_with(e.clone());
-                    }
-                    r.ran_on = j.ran_on.clone();
-                    records.push(r);
-                    plans.get_mut(&j.stage).unwrap().settle(j, out, dt);
-                }
+    /// After a round, the adaptive stages whose points are all known choose their next
+    /// points; whether any stage grew (then another round follows).
+    fn refine_adaptive(&mut self, plans: &mut BTreeMap<usize, StagePlan>, round: usize) -> bool {
+        let mut grew = false;
+        for (&si, plan) in plans.iter_mut() {
+            let stage = &self.p.stages[si];
+            let Some(axis) = &stage.adaptive else { continue };
+            if plan.failed {
+                continue;
             }
-            // Adaptive stages whose points are all known choose their next points.
-            let mut grew = false;
-            for (&si, plan) in plans.iter_mut() {
-                let stage = &p.stages[si];
-                let Some(axis) = &stage.adaptive else { continue };
-                if plan.failed {
-                    continue;
-                }
-                if plan.outs.iter().any(Option::is_none) {
-                    // Dry run: what follows depends on the points that would run.
-                    records.push(TaskRecord::new(
-                        stage,
-                        &format!("(adaptive refinement of {} after round {round})", axis.param),
-                        None,
-                        Status::Unknown,
-                        Some(Reason::AdaptiveWouldRun),
-                    ));
-                    continue;
-                }
-                let outputs: Vec<&Output> = plan.outs.iter().map(|o| &o.as_ref().unwrap().1).collect();
-                match super::adaptive::next_points(axis, registry.get(&stage.kind).unwrap(), &plan.points, &outputs) {
-                    Ok(new) => {
-                        grew |= !new.is_empty();
-                        plan.points.extend(new);
-                    }
-                    Err(e) => {
-                        let mut r = TaskRecord::new(
-                            stage,
-                            &format!("(adaptive refinement of {} after round {round})", axis.param),
-                            None,
-                            Status::Failed,
-                            None,
-                        );
-                        r.error = Some(e);
-                        records.push(r);
-                        plan.failed = true;
-                    }
-                }
+            let label = format!("(adaptive refinement of {} after round {round})", axis.param);
+            if plan.outs.iter().any(Option::is_none) {
+                // Dry run: what follows depends on the points that would run.
+                self.records.push(TaskRecord::new(
+                    stage,
+                    &label,
+                    None,
+                    Status::Unknown,
+                    Some(Reason::AdaptiveWouldRun),
+                ));
+                continue;
             }
-            if !grew {
-                break;
+            let outputs: Vec<&Output> = plan.outs.iter().map(|o| &o.as_ref().unwrap().1).collect();
+            let kind = self.registry.get(&stage.kind).unwrap();
+            match super::adaptive::next_points(axis, kind, &plan.points, &outputs) {
+                Ok(new) => {
+                    grew |= !new.is_empty();
+                    plan.points.extend(new);
+                }
+                Err(e) => {
+                    let mut r = TaskRecord::new(stage, &label, None, Status::Failed, None);
+                    r.error = Some(e);
+                    self.records.push(r);
+                    plan.failed = true;
+                }
             }
         }
-        drop(input_tables);
+        grew
+    }
 
-        // Assemble each stage of the wave.
+    /// Each stage of a finished wave: failed, unknown (a dry run), or done, its points in
+    /// publication order, its table assembled and its manifest kept for the end.
+    fn assemble_wave(&mut self, plans: BTreeMap<usize, StagePlan>) -> Result<()> {
         for (si, mut plan) in plans {
-            let stage = &p.stages[si];
-            let kind = registry.get(&stage.kind).unwrap();
+            let stage = &self.p.stages[si];
+            let kind = self.registry.get(&stage.kind).unwrap();
             let state = if plan.failed {
                 StageState::Failed
             } else if plan.outs.iter().any(Option::is_none) {
@@ -543,7 +571,7 @@ pub fn run_keeping(
                         .append(&o.table)
                         .with_context(|| format!("assembling the table of stage `{}`", stage.name))?;
                 }
-                manifests.push((
+                self.manifests.push((
                     si,
                     StageManifest {
                         kind: stage.kind.clone(),
@@ -563,14 +591,23 @@ pub fn run_keeping(
                 ));
                 StageState::Done { hash: stage_hash(&hashes), table, points, params, times }
             };
-            states.insert(si, state);
+            self.states.insert(si, state);
         }
+        Ok(())
     }
-    let _ = multi.clear();
 
-    let pipeline_dir = Path::new(&p.file).parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut report =
-        RunReport {
+    /// The end of a run: the manifests and published files written (what cannot be is
+    /// recorded and the rest still written), the stages' notes and regressions gathered,
+    /// the report kept in the run history; returns it with the completed stages.
+    fn finish(
+        self,
+        order: &[usize],
+        started_unix_ms: u64,
+        start: Instant,
+    ) -> Result<(RunReport, Vec<Completed>), RunError> {
+        let (p, opts) = (self.p, self.opts);
+        let pipeline_dir = Path::new(&p.file).parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let mut report = RunReport {
             started_unix_ms,
             pipeline: p.file.clone(),
             overrides: p.overrides.clone(),
@@ -582,57 +619,121 @@ pub fn run_keeping(
                     c
                 }
             }),
-            tasks: records,
+            tasks: self.records,
             ..Default::default()
         };
-    if !opts.dry_run {
-        remove_stale_temporaries(&[&opts.figures_dir, &opts.tables_dir]);
-        let dirs = OutputDirs { figures: opts.figures_dir.clone(), tables: opts.tables_dir.clone() };
-        // A manifest or a published file that cannot be written (a full disk) is recorded,
-        // and the rest still written: the other stages' outputs and the report.
-        for (si, m) in &manifests {
-            if let Err(e) = cache.write_manifest(&pid, &p.stages[*si].name, m) {
-                report.errors.push(format!("stage `{}`: its manifest: {e:#}", p.stages[*si].name));
+        if !opts.dry_run {
+            remove_stale_temporaries(&[&opts.figures_dir, &opts.tables_dir]);
+            let dirs = OutputDirs { figures: opts.figures_dir.clone(), tables: opts.tables_dir.clone() };
+            // A manifest or a published file that cannot be written (a full disk) is recorded,
+            // and the rest still written: the other stages' outputs and the report.
+            for (si, m) in &self.manifests {
+                if let Err(e) = self.cache.write_manifest(&self.pid, &p.stages[*si].name, m) {
+                    report.errors.push(format!("stage `{}`: its manifest: {e:#}", p.stages[*si].name));
+                }
             }
-        }
-        for &si in &order {
-            if let Some(StageState::Done { points, times, .. }) = states.get(&si).filter(|_| p.stages[si].publish) {
-                match publish_stage(p, &p.stages[si], registry, points, times, &dirs) {
-                    Ok(written) => report.published.extend(written),
-                    Err(e) => report.errors.push(format!("stage `{}`: publishing: {e:#}", p.stages[si].name)),
+            for &si in order {
+                if let Some(StageState::Done { points, times, .. }) =
+                    self.states.get(&si).filter(|_| p.stages[si].publish)
+                {
+                    match publish_stage(p, &p.stages[si], self.registry, points, times, &dirs) {
+                        Ok(written) => report.published.extend(written),
+                        Err(e) => report.errors.push(format!("stage `{}`: publishing: {e:#}", p.stages[si].name)),
+                    }
                 }
             }
         }
-    }
-    for &si in &order {
-        if let Some(StageState::Done { points, .. }) = states.get(&si) {
-            for (_, o) in points {
-                report.notes.extend(o.notes.iter().cloned());
-                let stage = &p.stages[si].name;
-                report.regressions.extend(o.regressions.iter().map(|r| format!("{stage}: {r}")));
+        for &si in order {
+            if let Some(StageState::Done { points, .. }) = self.states.get(&si) {
+                for (_, o) in points {
+                    report.notes.extend(o.notes.iter().cloned());
+                    let stage = &p.stages[si].name;
+                    report.regressions.extend(o.regressions.iter().map(|r| format!("{stage}: {r}")));
+                }
             }
         }
-    }
-    report.wall_time_s = start.elapsed().as_secs_f64();
-    report.finalize_counts();
-    if !opts.dry_run {
-        // The run's report, kept in the history (`repro runs`, and the roots of `repro gc`),
-        // and as the last run.
-        let bytes = serde_json::to_vec_pretty(&report).context("serialising the run report")?;
-        let runs = cache.root.join("runs");
-        let name = format!("run-{:013}-{}.json", report.started_unix_ms, std::process::id());
-        for path in [runs.join(name), runs.join("last.json")] {
-            if let Err(e) = super::cache::write_atomic(&path, &bytes, &cache.tmp_dir()) {
-                report.errors.push(format!("the run history: {e:#}"));
-                break;
+        report.wall_time_s = start.elapsed().as_secs_f64();
+        report.finalize_counts();
+        if !opts.dry_run {
+            // The run's report, kept in the history (`repro runs`, and the roots of `repro gc`),
+            // and as the last run.
+            let bytes = serde_json::to_vec_pretty(&report).context("serialising the run report")?;
+            let runs = self.cache.root.join("runs");
+            let name = format!("run-{:013}-{}.json", report.started_unix_ms, std::process::id());
+            for path in [runs.join(name), runs.join("last.json")] {
+                if let Err(e) = super::cache::write_atomic(&path, &bytes, &self.cache.tmp_dir()) {
+                    report.errors.push(format!("the run history: {e:#}"));
+                    break;
+                }
             }
         }
-    }
-    let mut completed = Vec::new();
-    for (si, state) in states {
-        if let StageState::Done { points, times, .. } = state {
-            completed.push(Completed { stage: p.stages[si].name.clone(), points, times });
+        let mut completed = Vec::new();
+        for (si, state) in self.states {
+            if let StageState::Done { points, times, .. } = state {
+                completed.push(Completed { stage: p.stages[si].name.clone(), points, times });
+            }
         }
+        Ok((report, completed))
     }
-    Ok((report, completed))
+}
+
+/// The table of a needed stage that is done.
+fn done_table<'s>(states: &'s BTreeMap<usize, StageState>, index: &BTreeMap<&str, usize>, need: &str) -> &'s Table {
+    match &states[&index[need]] {
+        StageState::Done { table, .. } => table,
+        _ => unreachable!("a stage runs after the stages it needs are done"),
+    }
+}
+
+/// The points (key and output) of a needed stage that is done.
+fn done_points<'s>(
+    states: &'s BTreeMap<usize, StageState>,
+    index: &BTreeMap<&str, usize>,
+    need: &str,
+) -> &'s [(Hash, Output)] {
+    match &states[&index[need]] {
+        StageState::Done { points, .. } => points,
+        _ => unreachable!("a stage runs after the stages it needs are done"),
+    }
+}
+
+/// The points of each stage a job needs: all of them, or for a stage read row by row, those
+/// that match the job's parameters.
+fn job_needs(
+    p: &Pipeline,
+    states: &BTreeMap<usize, StageState>,
+    index: &BTreeMap<&str, usize>,
+    plan: &StagePlan,
+    j: &crate::plan::Job,
+) -> JobNeeds {
+    p.stages[j.stage]
+        .needs
+        .iter()
+        .map(|n| match plan.matched.iter().find(|m| &m.need.stage == n) {
+            Some(m) => (n.clone(), m.select(&j.params)),
+            None => (n.clone(), (0..done_points(states, index, n).len()).collect()),
+        })
+        .collect()
+}
+
+/// The rows a job reads of the stages it reads row by row, assembled into a table each.
+fn matched_rows(
+    p: &Pipeline,
+    states: &BTreeMap<usize, StageState>,
+    index: &BTreeMap<&str, usize>,
+    j: &crate::plan::Job,
+    needs: &JobNeeds,
+) -> Result<BTreeMap<String, Table>> {
+    needs
+        .iter()
+        .filter(|(n, _)| p.stages[j.stage].matched(n).is_some())
+        .map(|(n, selected)| {
+            let points = done_points(states, index, n);
+            let mut t = Table::new();
+            for &i in selected {
+                t.append(&points[i].1.table).with_context(|| format!("assembling the rows of stage `{n}`"))?;
+            }
+            Ok((n.clone(), t))
+        })
+        .collect()
 }
