@@ -203,6 +203,14 @@ fn sizes_and_tolerances_that_would_abort_or_hang_are_refused() {
             &["theory.persson", "inv_k=2", "V0=1", "rel_tol=1e-16"][..],
             "parameter `rel_tol`: must lie in [1e-14, 0.01), got 1e-16",
         ),
+        // A valid radius whose default mesh (resolving g0) no memory holds: R = 1e6 mm used
+        // 6 GB before it failed, R = 1e9 aborted the process.
+        (&["fem.mesh", "R=1000000", "h=1"][..], "parameter `n_meridian`: the default mesh of R = 1e6 mm"),
+        (
+            &["fem.indent", "shell={R: 1000000000, h: 1}", "delta_max=0.1", "steps=2"][..],
+            "parameter `shell.n_meridian`: the default mesh of R = 1e9 mm, h = 1 mm at g0 = 0.1 mm has about 1.5e10",
+        ),
+        (&["fem.gamma_c", "h_over_R=0.06", "model={R: 1000000}"][..], "parameter `model.n_meridian`: the default mesh"),
     ] {
         let mut a = vec!["point"];
         a.extend_from_slice(args);
@@ -217,6 +225,9 @@ fn sizes_and_tolerances_that_would_abort_or_hang_are_refused() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("p.yaml:4:") && err.contains("must lie in 2..=1000000"), "{err}");
+    // A mesh given within the solver's range is taken at any radius.
+    let out = s.repro(&["point", "fem.mesh", "R=1000000", "h=1", "n_meridian=8"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     // Persson's friction at the largest speed allowed is finite, about 1/V0.
     let out = s.repro(&["point", "theory.persson", "inv_k=2", "V0=1e100"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

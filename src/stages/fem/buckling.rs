@@ -118,6 +118,7 @@ impl Kind for FemBuckling {
         let mut e = Vec::new();
         let m = p.point_model();
         m.validate(&mut e);
+        m.validate_mesh(p.h_over_R, &mut e);
         if p.dissipation && matches!(m.snap, SnapCriterion::Thesis(_) | SnapCriterion::Energy) {
             e.push(FieldError::new(
                 "dissipation",
@@ -280,6 +281,7 @@ impl Kind for FemBucklingLimit {
             e.push(FieldError::new("h_hi", format!("must exceed h_lo = {}, got {}", p.h_lo, p.h_hi)));
         }
         p.model.validate(&mut e);
+        p.model.validate_mesh(p.h_hi, &mut e);
         e
     }
 

@@ -93,6 +93,7 @@ impl Kind for FemGammaC {
     fn validate(p: &GammaCParams) -> Vec<FieldError> {
         let mut e = Vec::new();
         p.model.validate(&mut e);
+        p.model.validate_mesh(p.h_over_R, &mut e);
         e
     }
 

@@ -100,7 +100,7 @@ pub enum Support {
 impl IndentParams {
     pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
         let mut shell = Vec::new();
-        self.shell.validate(&mut shell);
+        self.shell.validate(self.g0, &mut shell);
         e.extend(prefixed("shell", shell));
     }
 

@@ -213,6 +213,13 @@ impl MapModel {
         }
     }
 
+    /// Checks the mesh of the shell at `h_over_r` (the default one resolves g0).
+    pub(super) fn validate_mesh(&self, h_over_r: f64, e: &mut Vec<FieldError>) {
+        if self.n_meridian.is_none() {
+            e.extend(super::default_mesh_error("model.n_meridian", self.R, self.h(h_over_r), self.g0));
+        }
+    }
+
     pub(super) fn h(&self, h_over_r: f64) -> f64 {
         h_over_r * self.R
     }

@@ -15,7 +15,7 @@ pub mod shell;
 use crate::fem::cycle::Jump;
 use crate::fem::mesh::{default_mesh_rel_error, default_mesh_w_rel_error, ShellMesh};
 use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
+use crate::pipeline::table::{format_number, ColumnData, Table};
 use crate::stages::check;
 use anyhow::Result;
 use indent::{default_g0, FemIndent};
@@ -86,9 +86,13 @@ pub struct ShellParams {
 }
 
 impl ShellParams {
-    pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
+    /// Checks the shell, its mesh sized for the Lennard-Jones range `g0`.
+    pub(super) fn validate(&self, g0: f64, e: &mut Vec<FieldError>) {
         if self.h >= 0.5 * self.R {
             e.push(FieldError::new("h", format!("a thin shell needs h < R/2, got h = {} and R = {}", self.h, self.R)));
+        }
+        if self.n_meridian.is_none() {
+            e.extend(default_mesh_error("n_meridian", self.R, self.h, g0));
         }
         self.imperfection.validate(e, "");
     }
@@ -120,6 +124,28 @@ impl ShellParams {
     }
 }
 
+/// The default meridian mesh of a shell of radius `r` and thickness `h` resolves the
+/// Lennard-Jones range `g0` (`fem::mesh::meridian_elements`); an error at `path` when that
+/// takes more elements than the shell solver is given (`check::MAX_SHELL_ELEMENTS`), so
+/// that a valid radius cannot ask for a mesh no memory holds (R = 1e6 mm at g0 = 0.1 mm:
+/// 1.5e7 elements, 6 GB before it failed).
+pub(super) fn default_mesh_error(path: &str, r: f64, h: f64, g0: f64) -> Option<FieldError> {
+    let n = 1.5 * (r + h) / g0;
+    (!(n <= check::MAX_SHELL_ELEMENTS as f64)).then(|| {
+        FieldError::new(
+            path,
+            format!(
+                "the default mesh of R = {} mm, h = {} mm at g0 = {} mm has about {n:.1e} meridian elements (1.5 (R + h) / g0), \
+                 more than the {} the shell solver takes: give `n_meridian`, or a larger g0",
+                format_number(r),
+                format_number(h),
+                format_number(g0),
+                check::MAX_SHELL_ELEMENTS
+            ),
+        )
+    })
+}
+
 pub struct FemMesh;
 
 impl Kind for FemMesh {
@@ -132,7 +158,7 @@ impl Kind for FemMesh {
 
     fn validate(p: &ShellParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        p.validate(&mut e);
+        p.validate(default_g0(), &mut e);
         e
     }
 
