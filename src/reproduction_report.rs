@@ -11,6 +11,7 @@
 //!
 //! One file: the page's sections share one model of the run.
 
+use crate::pipeline::cache::read_regular;
 use crate::pipeline::report::{RunReport, Status};
 use crate::pipeline::spec::Pipeline;
 use anyhow::{Context, Result};
@@ -227,11 +228,11 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     };
     let run: Option<RunReport> = match &src.run_report {
         Some(path) if path.exists() => {
-            Some(serde_json::from_slice(&std::fs::read(path)?).with_context(|| format!("reading {}", path.display()))?)
+            Some(serde_json::from_slice(&read_regular(path)?).with_context(|| format!("reading {}", path.display()))?)
         }
         _ => None,
     };
-    let pipeline_bytes = std::fs::read(&src.pipeline_file)?;
+    let pipeline_bytes = read_regular(&src.pipeline_file)?;
     let dir = src.pipeline_file.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let (commit, dirty) = match crate::pipeline::report::git_commit(dir) {
         Some((c, modified)) => (Some(c), modified),
@@ -289,7 +290,8 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
         let _ = writeln!(h, "<h2 id=\"chapter-{ch}\">{}</h2>", chapter_heading(ch));
         for (f, title) in &chapters[*ch] {
             let svg_path = src.figures_dir.join(format!("{}.svg", f.name));
-            let svg = std::fs::read_to_string(&svg_path)
+            let svg = read_regular(&svg_path)
+                .map(|b| String::from_utf8_lossy(&b).into_owned())
                 .with_context(|| format!("reading {} (run the pipeline first)", svg_path.display()))?;
             let svg = svg.trim_start_matches(|c| c != '<');
             let svg = match svg.find("<svg") {

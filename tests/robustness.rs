@@ -42,6 +42,60 @@ fn corrupted_or_truncated_entries_are_reported_and_recomputed() {
     assert_eq!(r.count(None, "computed"), 0, "the recomputed entries are sound");
 }
 
+/// `cmd` run to its end, or killed (and the test failed) after `limit`.
+fn bounded(mut cmd: std::process::Command, limit: Duration) -> std::process::Output {
+    let child = cmd.stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let pid = child.id();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(child.wait_with_output());
+    });
+    match rx.recv_timeout(limit) {
+        Ok(out) => out.unwrap(),
+        Err(_) => {
+            let _ = std::process::Command::new("kill").args(["-9", &pid.to_string()]).status();
+            panic!("still running after {limit:?}: blocked on a special file");
+        }
+    }
+}
+
+#[test]
+fn a_fifo_standing_for_an_entry_a_manifest_or_an_output_blocks_nothing() {
+    // A FIFO's `open` for reading waits for a writer: in place of a cache entry, a stage's
+    // manifest or a published table it blocked `repro run`, `status` and `gc --dry-run`
+    // forever. Now each is read as what it is not (a regular file), and the run recomputes,
+    // rewrites and republishes, moving the FIFO aside.
+    let s = Scratch::new("fifo");
+    s.write("p.yaml", &sleep_pipeline("[1, 2, 3]", 0, "t"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    let figures = snapshot(&s.path("figures"));
+    let tables = snapshot_untimed(&s.path("tables"));
+    let entry = entry_files(&s)[0].clone();
+    let manifest =
+        std::fs::read_dir(s.path("cache/manifests")).unwrap().next().unwrap().unwrap().path().join("sweep.json");
+    let table = s.path("tables/sweep.parquet");
+    for path in [&entry, &manifest, &table] {
+        std::fs::remove_file(path).unwrap();
+        let ok = std::process::Command::new("mkfifo").arg(path).status().unwrap().success();
+        assert!(ok, "mkfifo {}", path.display());
+    }
+    let limit = Duration::from_secs(60);
+    let out = bounded(s.command(&["status", "p.yaml"]), limit);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = bounded(s.command(&["gc", "--dry-run"]), limit);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = bounded(s.command(&["run", "p.yaml", "-q"]), limit);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("moved aside"), "{err}");
+    assert_eq!(snapshot(&s.path("figures")), figures);
+    assert_eq!(snapshot_untimed(&s.path("tables")), tables);
+    for path in [&entry, &manifest, &table] {
+        assert!(std::fs::metadata(path).unwrap().is_file(), "{} is a file again", path.display());
+    }
+}
+
 #[test]
 fn a_directory_standing_for_an_entry_or_an_output_is_moved_aside_and_the_damage_heals() {
     // A directory where a cache entry and where a published table belong (with a file in

@@ -55,6 +55,21 @@ pub fn write_atomic(path: &Path, bytes: &[u8], tmp_dir: &Path) -> Result<()> {
     result.with_context(|| format!("writing {}", path.display()))
 }
 
+/// Reads a file that must be a regular one (following links): anything else (a FIFO, a
+/// socket, a device, a directory) is an error of kind `InvalidData` instead of a read that
+/// blocks forever (a FIFO's `open` waits for a writer). Every file the tool reads back from
+/// the cache or its outputs is read through this.
+pub fn read_regular(path: &Path) -> std::io::Result<Vec<u8>> {
+    let meta = fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{} is not a regular file", path.display()),
+        ));
+    }
+    fs::read(path)
+}
+
 /// Creates `dir` and its missing parents. Where that fails because a file, or a link that
 /// leads nowhere, stands where one of them should be, that is moved aside (as by
 /// `move_aside_non_file`) and the directories are created: damage heals instead of failing
@@ -211,7 +226,9 @@ fn lock_exclusive(file: &File, root: &Path, mode: LockMode) -> Result<(), OpenEr
     match file.try_lock() {
         Ok(()) => Ok(()),
         Err(fs::TryLockError::WouldBlock) => {
-            let holder = fs::read_to_string(root.join("lock.info")).unwrap_or_else(|_| "unknown process".into());
+            let holder = read_regular(&root.join("lock.info"))
+                .map(|b| String::from_utf8_lossy(&b).into_owned())
+                .unwrap_or_else(|_| "unknown process".into());
             let holder = holder.trim().to_string();
             if mode == LockMode::Refuse {
                 return Err(OpenError::Busy(CacheBusy { dir: root.display().to_string(), holder }));
@@ -304,7 +321,7 @@ impl Cache {
             return Err(Miss::Corrupted(format!("`{key}` is not a task key")));
         }
         let path = self.entry_path(key);
-        let bytes = match fs::read(&path) {
+        let bytes = match read_regular(&path) {
             Ok(b) => b,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(Miss::Absent),
             Err(e) => return Err(Miss::Corrupted(format!("unreadable: {e}"))),
@@ -324,7 +341,7 @@ impl Cache {
     }
 
     pub fn read_manifest(&self, pipeline_id: &str, stage: &str) -> Option<StageManifest> {
-        let bytes = fs::read(self.manifest_path(pipeline_id, stage)).ok()?;
+        let bytes = read_regular(&self.manifest_path(pipeline_id, stage)).ok()?;
         serde_json::from_slice(&bytes).ok()
     }
 
@@ -333,7 +350,7 @@ impl Cache {
     pub fn write_manifest(&self, pipeline_id: &str, stage: &str, m: &StageManifest) -> Result<()> {
         let path = self.manifest_path(pipeline_id, stage);
         let bytes = serde_json::to_vec_pretty(m)?;
-        if fs::read(&path).is_ok_and(|old| old == bytes) {
+        if read_regular(&path).is_ok_and(|old| old == bytes) {
             return Ok(());
         }
         write_atomic(&path, &bytes, &self.tmp_dir())

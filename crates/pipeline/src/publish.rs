@@ -43,7 +43,7 @@ fn provenance_table(points: &[(Hash, Output)], times: &[f64], code_version: &str
 
 /// Writes `bytes` to `path` unless it already holds them; returns whether it wrote.
 fn publish_file(path: &Path, bytes: &[u8]) -> Result<bool> {
-    if std::fs::read(path).map(|b| b == bytes).unwrap_or(false) {
+    if crate::cache::read_regular(path).map(|b| b == bytes).unwrap_or(false) {
         return Ok(false);
     }
     let dir = path.parent().unwrap_or(Path::new("."));

@@ -252,7 +252,7 @@ pub fn run_history(cache_dir: &Path) -> Vec<(PathBuf, RunReport)> {
             name.starts_with("run-") && name.ends_with(".json")
         })
         .filter_map(|p| {
-            let r: RunReport = serde_json::from_slice(&std::fs::read(&p).ok()?).ok()?;
+            let r: RunReport = serde_json::from_slice(&crate::cache::read_regular(&p).ok()?).ok()?;
             Some((p, r))
         })
         .collect();

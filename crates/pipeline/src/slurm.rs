@@ -389,7 +389,7 @@ impl<'a> Coordinator<'a> {
     }
 
     fn read_failure(&self, key: &str) -> Option<TaskError> {
-        let bytes = std::fs::read(failure_path(self.cache, key)).ok()?;
+        let bytes = crate::cache::read_regular(&failure_path(self.cache, key)).ok()?;
         let f: Failure = serde_json::from_slice(&bytes).ok()?;
         Some(f.error)
     }
@@ -428,8 +428,8 @@ pub fn work(registry: &super::kind::Registry, cache_dir: &Path, list: &Path, ind
 
 fn run_spec(registry: &super::kind::Registry, cache: &Cache, key: &str) -> Result<f64, TaskError> {
     let worker = |message: String| TaskError::Worker { message };
-    let bytes =
-        std::fs::read(spec_path(cache, key)).map_err(|e| worker(format!("reading its task specification: {e}")))?;
+    let bytes = crate::cache::read_regular(&spec_path(cache, key))
+        .map_err(|e| worker(format!("reading its task specification: {e}")))?;
     let spec: TaskSpec = serde_json::from_slice(&bytes).map_err(|e| worker(format!("its task specification: {e}")))?;
     if spec.key != key {
         return Err(worker(format!("its task specification holds key {}", spec.key)));

@@ -200,16 +200,26 @@ impl Table {
 }
 
 /// Reads a Parquet file into a polars DataFrame (used by tests and tools).
+/// Opens a table's file, which must be a regular file (`cache::read_regular`: a FIFO would
+/// block the open).
+fn open_regular(path: &std::path::Path) -> Result<std::fs::File> {
+    let meta = std::fs::metadata(path).with_context(|| format!("opening {}", path.display()))?;
+    if !meta.is_file() {
+        anyhow::bail!("opening {}: not a regular file", path.display());
+    }
+    std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))
+}
+
 pub fn read_parquet(path: &std::path::Path) -> Result<polars::prelude::DataFrame> {
     use polars::prelude::*;
-    let f = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let f = open_regular(path)?;
     Ok(ParquetReader::new(f).finish()?)
 }
 
 /// The file-level key/value metadata of a Parquet file (`to_parquet_bytes`' `metadata`).
 pub fn read_parquet_metadata(path: &std::path::Path) -> Result<Vec<(String, String)>> {
     use polars::prelude::*;
-    let f = std::fs::File::open(path).with_context(|| format!("opening {}", path.display()))?;
+    let f = open_regular(path)?;
     let mut reader = ParquetReader::new(f);
     let meta = reader.get_metadata()?;
     Ok(meta

@@ -178,8 +178,11 @@ fn clip(s: &str) -> String {
 }
 
 fn compare_svg(produced: &Path, reference: &Path, rel_tol: f64) -> Option<Difference> {
-    let read =
-        |p: &Path| std::fs::read_to_string(p).map_err(|e| Difference::Unreadable(format!("{}: {e}", p.display())));
+    let read = |p: &Path| {
+        crate::cache::read_regular(p)
+            .map(|b| String::from_utf8_lossy(&b).into_owned())
+            .map_err(|e| Difference::Unreadable(format!("{}: {e}", p.display())))
+    };
     let (a, b) = match (read(produced), read(reference)) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => return Some(e),

@@ -48,7 +48,7 @@ pub fn load_with(
     overrides: &[Override],
 ) -> Result<Pipeline, InvalidPipeline> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = crate::cache::read_regular(path).map_err(|e| {
         InvalidPipeline(vec![Diagnostic {
             location: Location { file: file.clone(), line: 0, column: 0 },
             message: format!("cannot read the pipeline file: {e}"),
