@@ -156,6 +156,9 @@ pub(crate) struct StatusArgs {
     /// List every task.
     #[arg(long)]
     pub(crate) explain: bool,
+    /// Only this stage and what it needs (repeatable), as `repro run --target`.
+    #[arg(long = "target", value_name = "STAGE")]
+    pub(crate) targets: Vec<String>,
 }
 
 /// The arguments of `repro dag` (`Command::Dag`).

@@ -156,9 +156,9 @@ fn worker_command(args: cli::WorkerArgs, registry: &Registry) -> Result<Exit, Cl
 
 /// `repro status`.
 fn status_command(args: cli::StatusArgs, registry: &Registry) -> Result<Exit, CliError> {
-    let cli::StatusArgs { pipeline, set, cache, explain } = args;
+    let cli::StatusArgs { pipeline, set, cache, explain, targets } = args;
     let p = load_with(&pipeline, registry, &set)?;
-    let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, ..Default::default() };
+    let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, targets, ..Default::default() };
     let rep = executor::run(&p, registry, &opts)?;
     print!("{}", rep.summary(explain));
     Ok(Exit::Success)

@@ -246,6 +246,16 @@ fn a_dry_run_prints_its_plan_per_stage_and_show_prints_a_head() {
     assert!(sweep[0].contains("6 would run"), "{stdout}");
     let out = s.repro(&["run", "p.yaml", "--dry-run", "--explain"]);
     assert!(String::from_utf8_lossy(&out.stdout).lines().filter(|l| l.contains("x=")).count() >= 6);
+    // status --target: that stage and what it needs, as run --target selects them.
+    let out = s.repro(&["status", "p.yaml", "--target", "after"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stages: Vec<&str> = stdout.lines().filter_map(|l| l.split_whitespace().next()).collect();
+    assert_eq!(&stages[..2], ["sweep", "after"], "{stdout}");
+    assert!(!stdout.contains("fig"), "{stdout}");
+    let out = s.repro(&["status", "p.yaml", "--target", "aftr"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `after`?"));
     // show: the first rows, provenance columns hidden unless asked.
     s.run("p.yaml", &[]);
     let out = s.repro(&["show", "tables/sweep.parquet", "--head", "2"]);
