@@ -10,6 +10,7 @@ mod bem_elastic_limits;
 mod bem_starts;
 mod claims;
 mod error_coverage;
+mod extremes;
 mod fuzz;
 mod kind_versions;
 mod matched_needs;

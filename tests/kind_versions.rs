@@ -16,7 +16,7 @@ fn tiny_map_model() -> Value {
     json!({"n_meridian": 12, "n_thickness": 2, "delta_max": 0.02, "steps": 2})
 }
 
-fn reference_params() -> BTreeMap<&'static str, Value> {
+pub(crate) fn reference_params() -> BTreeMap<&'static str, Value> {
     BTreeMap::from([
         ("theory.maugis_dugdale", json!({"lambda": 0.7, "A_min": 0.1, "A_max": 2.0, "n": 7})),
         ("theory.maugis_pulloff", json!({"lambda": 0.7})),
