@@ -354,6 +354,9 @@ class Run:
     the end (the claims' verdict line among them); ``tables[stage]`` is a stage's table
     as a DataFrame (read when first asked for); ``published`` lists the files written."""
 
+    report: Dict[str, Any]
+    failures: List[str]
+
     def __init__(self, report: dict, tables: Dict[str, bytes], failures: List[str], backend: str):
         self.report = report
         self._parquet = tables
@@ -367,10 +370,10 @@ class Run:
         return list(self._parquet)
 
     @property
-    def tables(self) -> "_Tables":
+    def tables(self) -> Mapping[str, Any]:
         return _Tables(self)
 
-    def table(self, stage: str):
+    def table(self, stage: str) -> Any:
         if stage not in self._frames:
             if stage not in self._parquet:
                 raise KeyError(f"stage `{stage}` did not complete in this run (completed: {', '.join(self._parquet)})")
@@ -411,7 +414,7 @@ class Run:
         return float(self.report.get("wall_time_s", 0.0))
 
     @property
-    def claims(self):
+    def claims(self) -> Any:
         """The claims checked by the run (the ``claims`` stage's table), or None."""
         return self.table("claims") if "claims" in self._parquet else None
 

@@ -74,27 +74,12 @@ class Run:
     @property
     def claims(self) -> Any: ...
 
-Sweep = Union[float, Sequence[float], np.ndarray, Mapping[str, Any]]
-Path = Union[str, os.PathLike]
-
 def kinds() -> List[str]: ...
 def describe(kind: str) -> KindDescription: ...
-def run(
-    pipeline: Path,
-    targets: Optional[Sequence[str]] = None,
-    *,
-    set: Optional[Mapping[str, Any]] = None,
-    cache: Optional[Path] = None,
-    figures: Path = "figures",
-    tables: Path = "tables",
-    jobs: Optional[int] = None,
-    force: Sequence[str] = (),
-    dry_run: bool = False,
-    progress: Optional[bool] = None,
-    backend: str = "pandas",
-    raise_on_failure: bool = True,
-    wait: bool = True,
-) -> Run: ...
+def run(pipeline: Union[str, os.PathLike], targets: Optional[Sequence[str]] = None, *, set: Optional[Mapping[str, Any]] = None, cache: Union[str, os.PathLike, None] = None, figures: Union[str, os.PathLike] = 'figures', tables: Union[str, os.PathLike] = 'tables', jobs: Optional[int] = None, force: Sequence[str] = (), dry_run: bool = False, progress: Optional[bool] = None, backend: str = 'pandas', raise_on_failure: bool = True, wait: bool = True) -> Run: ...
+
+Sweep = Union[float, Sequence[float], np.ndarray, Mapping[str, Any]]
+Path = Union[str, os.PathLike]
 
 @overload
 def point(

@@ -8,6 +8,7 @@ crates/python/python/repro/__init__.pyi`` (a test checks the committed file is c
 """
 
 import dataclasses
+import inspect
 import keyword
 import textwrap
 import typing
@@ -39,52 +40,9 @@ __version__: str
 DEFAULT_CACHE: str
 
 {dataclasses}
-class Run:
-    report: Dict[str, Any]
-    failures: List[str]
-    @property
-    def stages(self) -> List[str]: ...
-    @property
-    def tables(self) -> Mapping[str, Any]: ...
-    def table(self, stage: str) -> Any: ...
-    @property
-    def computed(self) -> int: ...
-    @property
-    def cached(self) -> int: ...
-    @property
-    def failed(self) -> int: ...
-    @property
-    def notes(self) -> List[str]: ...
-    @property
-    def verdict(self) -> Optional[str]: ...
-    @property
-    def published(self) -> List[str]: ...
-    @property
-    def wall_time_s(self) -> float: ...
-    @property
-    def claims(self) -> Any: ...
-
+{api}
 Sweep = Union[float, Sequence[float], np.ndarray, Mapping[str, Any]]
 Path = Union[str, os.PathLike]
-
-def kinds() -> List[str]: ...
-def describe(kind: str) -> KindDescription: ...
-def run(
-    pipeline: Path,
-    targets: Optional[Sequence[str]] = None,
-    *,
-    set: Optional[Mapping[str, Any]] = None,
-    cache: Optional[Path] = None,
-    figures: Path = "figures",
-    tables: Path = "tables",
-    jobs: Optional[int] = None,
-    force: Sequence[str] = (),
-    dry_run: bool = False,
-    progress: Optional[bool] = None,
-    backend: str = "pandas",
-    raise_on_failure: bool = True,
-    wait: bool = True,
-) -> Run: ...
 '''
 
 def annotation(t) -> str:
@@ -107,6 +65,28 @@ def dataclass_stubs() -> str:
                 lines.append(f"    def {name}(self, {args}) -> {annotation(hints['return'])}: ...")
         out.append("\n".join(lines) + "\n")
     return "\n".join(out)
+
+
+def signature(fn) -> str:
+    """A function's signature as the stub writes it, from the function itself."""
+    return str(inspect.signature(fn)).replace("repro.", "").replace("NoneType", "None")
+
+
+def api_stubs() -> str:
+    """The stub of `Run` (its annotated attributes, properties and methods) and of the
+    functions without a per-kind overload, from the objects themselves."""
+    lines = ["class Run:"]
+    lines += [f"    {name}: {annotation(t)}" for name, t in typing.get_type_hints(repro.Run).items()]
+    for name, member in vars(repro.Run).items():
+        if name.startswith("_"):
+            continue
+        if isinstance(member, property):
+            lines += ["    @property", f"    def {name}(self) -> {annotation(typing.get_type_hints(member.fget)['return'])}: ..."]
+        elif callable(member):
+            lines.append(f"    def {name}{signature(member)}: ...")
+    lines.append("")
+    lines += [f"def {fn.__name__}{signature(fn)}: ..." for fn in (repro.kinds, repro.describe, repro.run)]
+    return "\n".join(lines) + "\n"
 
 
 TYPES = {"number": "float", "integer": "int", "boolean": "bool", "string": "str"}
@@ -165,7 +145,7 @@ def overload(d, fn: str) -> str:
 
 
 def render() -> str:
-    out = [HEAD.replace("{dataclasses}", dataclass_stubs())]
+    out = [HEAD.replace("{dataclasses}", dataclass_stubs()).replace("{api}", api_stubs())]
     for fn in ("point", "sweep"):
         for name in repro.kinds():
             out.append(overload(repro.describe(name), fn))
