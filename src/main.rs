@@ -233,7 +233,8 @@ fn gc_command(args: cli::GcArgs, registry: &Registry) -> Result<Exit, CliError> 
     let bytes: u64 = g.removed.iter().map(|(_, b)| b).sum();
     if dry_run {
         for (key, size) in &g.removed {
-            println!("would remove {key} ({size} bytes)");
+            let what = g.described.get(key).map_or("", String::as_str);
+            println!("would remove {key} ({size} bytes): {what}");
         }
     }
     eprintln!(

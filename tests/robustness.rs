@@ -222,6 +222,10 @@ fn gc_removes_only_entries_nothing_refers_to() {
     let (stdout, text) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "{text}");
     assert_eq!(stdout.lines().filter(|l| l.starts_with("would remove ")).count(), 3, "{stdout}");
+    // Each named by the stage, point and pipeline of the run that had it (x=2 of the sweep,
+    // the first run's `after` and `fig`).
+    assert!(stdout.contains("stage `sweep` [x=2] of pipelines/a.yaml"), "{stdout}");
+    assert!(stdout.contains("stage `after`") && stdout.contains("stage `fig`"), "{stdout}");
     assert!(text.contains("kept 4 entries") && text.contains("would remove 3"), "{text}");
     assert_eq!(entry_files(&s).len(), 7);
     // Told to forget the recorded runs: the three go.

@@ -29,6 +29,9 @@ pub struct GcSummary {
     pub removed: Vec<(Hash, u64)>,
     /// The recorded runs whose entries were kept.
     pub runs_kept: usize,
+    /// In a dry run, what each entry to remove was: the stage, point and pipeline of the
+    /// latest recorded run that computed or read it, else its kind and parameters.
+    pub described: std::collections::BTreeMap<Hash, String>,
 }
 
 /// Removes cache entries that nothing refers to: no task of the given pipelines, and no task
@@ -47,7 +50,20 @@ pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: Gc
     }
     let now_ms = unix_ms();
     let mut summary = GcSummary::default();
-    for (_, r) in run_history(cache_dir) {
+    let history = run_history(cache_dir);
+    // Per key, the latest recorded task that had it (for a dry run's list).
+    let mut last_seen: std::collections::BTreeMap<String, String> = std::collections::BTreeMap::new();
+    if opt.dry_run {
+        for (_, r) in &history {
+            for t in &r.tasks {
+                if let Some(k) = &t.key {
+                    let point = if t.point.is_empty() { String::new() } else { format!(" [{}]", t.point) };
+                    last_seen.insert(k.clone(), format!("stage `{}`{point} of {}", t.stage, r.pipeline));
+                }
+            }
+        }
+    }
+    for (_, r) in history {
         let young = opt.older_than.is_none_or(|age| now_ms.saturating_sub(r.started_unix_ms) < age.as_millis() as u64);
         if young {
             summary.runs_kept += 1;
@@ -59,6 +75,11 @@ pub fn gc(pipelines: &[Pipeline], registry: &Registry, cache_dir: &Path, opt: Gc
             summary.kept += 1;
         } else if opt.dry_run {
             let size = std::fs::metadata(cache.entry_path(&key)).map(|m| m.len()).unwrap_or(0);
+            let what = last_seen.remove(&key).unwrap_or_else(|| match cache.get(&key) {
+                Ok(e) => format!("{}@v{} {}", e.kind, e.version, e.params),
+                Err(_) => "an unreadable entry".to_string(),
+            });
+            summary.described.insert(key.clone(), what);
             summary.removed.push((key, size));
         } else {
             let size = cache.remove(&key)?;
