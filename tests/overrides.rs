@@ -48,12 +48,20 @@ fn a_wrong_override_is_refused_before_anything_runs() {
             && err.contains("no stage `swep` in the pipeline (did you mean `sweep`?)"),
         "{err}"
     );
+    // A parameter the command line set is wrong: the error is located on that argument, and
+    // it is the only one (the stages that need `sweep` add none: it is declared, only invalid).
     let (code, err, _) = s.run("p.yaml", &["-S", "sweep.msec=1"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("stage `sweep` (util.sleep)") && err.contains("msec"), "{err}");
+    assert!(
+        err.contains("p.yaml (-S sweep.msec=1): error: stage `sweep` (util.sleep)") && err.contains("msec"),
+        "{err}"
+    );
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(!err.contains("names no stage"), "{err}");
     let (code, err, _) = s.run("p.yaml", &["-S", "sweep.ms=-1"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("ms"), "{err}");
+    assert!(err.contains("p.yaml (-S sweep.ms=-1): error:") && err.contains("ms"), "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
     let (code, err, _) = s.run("p.yaml", &["-S", "sweep.ms=[1, 2"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("is not a YAML value"), "{err}");

@@ -192,12 +192,19 @@ pub fn parse_with(
     if !errors.is_empty() {
         return Err(InvalidPipeline(errors));
     }
-    let mut cx =
-        Ctx { file, errors: Vec::new(), warnings: Vec::new(), shown: BTreeMap::new(), ranges_used: BTreeSet::new() };
+    let mut cx = Ctx {
+        file,
+        overrides,
+        errors: Vec::new(),
+        warnings: Vec::new(),
+        shown: BTreeMap::new(),
+        ranges_used: BTreeSet::new(),
+    };
     let root_map = root.as_mapping().expect("marked_yaml guarantees a top-level mapping");
     check_keys(&mut cx, root_map, &["stages", "description"], "the pipeline");
     let description = root_map.get_scalar("description").map(|s| s.as_str().to_string()).unwrap_or_default();
     let mut stages = Vec::new();
+    let mut declared = BTreeSet::new();
     match root_map.get_node("stages") {
         None => cx.err(cx.loc(&root), "missing `stages`: a pipeline is a list of stages"),
         Some(Node::Sequence(seq)) => {
@@ -207,10 +214,14 @@ pub fn parse_with(
                     stages.push(s);
                 }
             }
+            // Every stage the file declares, valid or not: a need of one that failed is not
+            // an error of its own (its errors are reported), so one mistake gives one error.
+            declared =
+                seq.iter().filter_map(|n| n.as_mapping()?.get_scalar("name").map(|s| s.as_str().to_string())).collect();
         }
         Some(other) => cx.err(cx.loc(other), "`stages` must be a list of stages"),
     }
-    check_graph(&mut cx, &stages);
+    check_graph(&mut cx, &stages, &declared);
     if cx.errors.is_empty() {
         let stages: Vec<Stage> = stages.into_iter().map(|s| s.stage).collect();
         check_ranges_shown(&mut cx, &stages);
@@ -318,7 +329,8 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             }
             Err(errors) => {
                 for e in errors {
-                    let location = locate(cx, params_map, &p.swept_nodes, &e);
+                    let location = override_location(cx, &name, &e.path)
+                        .unwrap_or_else(|| locate(cx, params_map, &p.swept_nodes, &e));
                     let point =
                         if p.label.is_empty() { String::new() } else { format!(" (at sweep point {})", p.label) };
                     cx.err(location, format!("stage `{name}` ({kind_name}){point}: {}", describe(&e)));
@@ -501,6 +513,14 @@ fn suggestion<'a>(name: &str, known: &[&'a str]) -> Option<&'a str> {
     known.iter().map(|k| (distance(name, k), *k)).filter(|(d, _)| *d <= limit).min().map(|(_, k)| k)
 }
 
+/// Where an error of parameter `path` of stage `stage` is, when the command line set that
+/// parameter (`-S stage.param=value`): on that argument, not in the file.
+fn override_location(cx: &Ctx, stage: &str, path: &str) -> Option<Location> {
+    let first = split_path(path).into_iter().next()?;
+    let o = cx.overrides.iter().rev().find(|o| o.stage == stage && o.param == first)?;
+    Some(Location { file: format!("{} (-S {o})", cx.file), line: 0, column: 0 })
+}
+
 /// The location of the deepest node on `err.path` (a swept parameter's node for this point).
 fn locate(cx: &Ctx, params: &MarkedMappingNode, swept: &BTreeMap<String, &Node>, err: &FieldError) -> Location {
     let segments = split_path(&err.path);
@@ -551,7 +571,7 @@ fn split_path(path: &str) -> Vec<String> {
     path.split(['.', '[']).filter(|s| !s.is_empty()).map(|s| s.trim_end_matches(']').to_string()).collect()
 }
 
-fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
+fn check_graph(cx: &mut Ctx, stages: &[ParsedStage], declared: &BTreeSet<String>) {
     let mut index = BTreeMap::new();
     for (i, s) in stages.iter().enumerate() {
         if let Some(&j) = index.get(s.stage.name.as_str()) {
@@ -577,6 +597,8 @@ fn check_graph(cx: &mut Ctx, stages: &[ParsedStage]) {
                 Some(&j) => {
                     graph.add_edge(j, i, ());
                 }
+                // Declared, but invalid: its own errors say why.
+                None if declared.contains(need) => {}
                 None => {
                     let names: Vec<&str> = index.keys().copied().collect();
                     let hint = suggestion(need, &names).map(|s| format!(" (did you mean `{s}`?)")).unwrap_or_default();

@@ -17,6 +17,8 @@ pub(super) struct Shown {
 
 pub(super) struct Ctx<'a> {
     pub file: &'a str,
+    /// The parameters the command line sets (`-S`): their errors are located there.
+    pub overrides: &'a [crate::spec::Override],
     pub errors: Vec<Diagnostic>,
     pub warnings: Vec<Warning>,
     /// The ranges shown of (stage, column), from every stage that declares one.
