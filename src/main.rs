@@ -460,10 +460,7 @@ fn kinds_command(args: cli::KindsArgs, registry: &Registry) -> Result<Exit, CliE
             Ok(Exit::Success)
         }
         Some(name) => {
-            let Some(k) = registry.get(&name) else {
-                let known: Vec<_> = registry.names().collect();
-                return Err(CliError::usage(format!("unknown stage kind `{name}`; known kinds: {}", known.join(", "))));
-            };
+            let k = repro::point::kind(registry, &name).map_err(|e| CliError::usage(e.to_string()))?;
             print!("{}", describe_kind(k, registry));
             Ok(Exit::Success)
         }

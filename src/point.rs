@@ -35,14 +35,17 @@ fn invalid_text(kind: &str, errors: &[FieldError]) -> String {
         .join("; ")
 }
 
+/// The kind named `kind`, or the error that lists the known ones.
+pub fn kind<'r>(registry: &'r Registry, kind: &str) -> Result<&'r dyn DynKind, PointError> {
+    registry.get(kind).ok_or_else(|| PointError::UnknownKind {
+        kind: kind.to_string(),
+        known: registry.names().map(String::from).collect(),
+    })
+}
+
 /// The kind named `kind` and the canonical parameters of the point `params` gives.
 pub fn check<'r>(registry: &'r Registry, kind: &str, params: &Value) -> Result<(&'r dyn DynKind, Value), PointError> {
-    let Some(k) = registry.get(kind) else {
-        return Err(PointError::UnknownKind {
-            kind: kind.to_string(),
-            known: registry.names().map(String::from).collect(),
-        });
-    };
+    let k = self::kind(registry, kind)?;
     let (canonical, _) =
         k.check(params).map_err(|errors| PointError::InvalidParameters { kind: kind.to_string(), errors })?;
     Ok((k, canonical))

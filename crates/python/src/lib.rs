@@ -129,12 +129,7 @@ fn kinds() -> Vec<&'static str> {
 #[pyfunction]
 fn describe_json(py: Python<'_>, kind: &str) -> PyResult<String> {
     let r = registry();
-    let Some(k) = r.get(kind) else {
-        return Err(point_error(
-            py,
-            PointError::UnknownKind { kind: kind.to_string(), known: r.names().map(String::from).collect() },
-        ));
-    };
+    let k = repro::point::kind(r, kind).map_err(|e| point_error(py, e))?;
     serde_json::to_string(&repro::description::describe(k, r)).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
@@ -222,12 +217,7 @@ fn sweep<'py>(
     wait: bool,
 ) -> PyResult<(String, Bound<'py, PyDict>, Vec<String>)> {
     let r = registry();
-    if r.get(kind).is_none() {
-        return Err(point_error(
-            py,
-            PointError::UnknownKind { kind: kind.to_string(), known: r.names().map(String::from).collect() },
-        ));
-    }
+    repro::point::kind(r, kind).map_err(|e| point_error(py, e))?;
     let params: serde_json::Value =
         serde_json::from_str(params_json).map_err(|e| error(py, "InvalidParameter", (format!("parameters: {e}"),)))?;
     let text = serde_json::json!({"stages": [{"name": kind, "kind": kind, "params": params}]}).to_string();
