@@ -143,12 +143,17 @@ impl Plate {
                 }
             })
             .sum();
-        let adhesive = self.adhesion.map_or(0.0, |ad| {
+        let frozen = self.frozen.as_ref().map_or(0.0, |f| f.gradient.iter().zip(u).map(|(g, x)| g * x).sum());
+        penalty + self.adhesive_energy(mesh, u, z_plate) + frozen
+    }
+
+    /// The adhesive energy of the Lennard-Jones law alone (<= 0; 0 without adhesion). It is
+    /// proportional to the work of adhesion at fixed displacements.
+    pub fn adhesive_energy(&self, mesh: &ShellMesh, u: &[f64], z_plate: f64) -> f64 {
+        self.adhesion.map_or(0.0, |ad| {
             let n = 2 * mesh.n_nodes();
             ad.apply(mesh, u, z_plate, &mut vec![0.0; n], &mut Vec::new(), &mut vec![0.0; n], Tangent::Exact).1
-        });
-        let frozen = self.frozen.as_ref().map_or(0.0, |f| f.gradient.iter().zip(u).map(|(g, x)| g * x).sum());
-        penalty + adhesive + frozen
+        })
     }
 
     /// Interface forces (added to `f_ext`, full dof vector), tangent entries of the residual

@@ -7,7 +7,9 @@
 //! not a potential and stores nothing). The flattened branch is loaded monolithically as
 //! under `Snap::Instability`; if it loses stability before delta_max, that is the snap.
 //! Otherwise the inverted state at delta_max is found where a damped jump from the
-//! flattened one comes to rest (`ShellProblem::jump_to_inverted`); if its Pi is lower, the
+//! flattened one comes to rest (`ShellProblem::jump_to_inverted`), and the balance there is
+//! recorded (`Balance`: the bracket of gamma_c places its probes by it,
+//! `critical::Margin`); if the inverted Pi is lower, the
 //! shell snaps, at the first loading state whose inverted neighbour is lower (found by
 //! bisection over the loading states: Pi_flat - Pi_inv rises with delta, measured in
 //! docs/shell.md, "The snap criteria").
@@ -18,7 +20,7 @@
 //! at delta_max. The barrier against lifting a touching interior off the plate (the local
 //! criterion) is a strength of order dgamma / g0 instead, and moves with g0.
 
-use super::{Cycle, CycleOptions, Jump, Snap};
+use super::{Balance, Cycle, CycleOptions, Jump, Snap};
 use crate::fem::indent::{apex_z, Step};
 use crate::fem::problem::ShellProblem;
 
@@ -30,11 +32,28 @@ impl ShellProblem<'_> {
         Some(self.model.strain_energy(&s.u)? + self.plate.energy(&self.model.mesh, &s.u, z_plate))
     }
 
+    /// The adhesive energy of the state `s` (<= 0).
+    fn adhesive_energy(&self, s: &Step) -> f64 {
+        self.plate.adhesive_energy(&self.model.mesh, &s.u, apex_z(self.model) - s.delta)
+    }
+
+    /// The inverted state at the delta of the flattened state `flat`, and the balance of
+    /// the two; none if no inverted state is found there.
+    fn balance(&self, flat: &Step) -> Option<(Step, Balance)> {
+        let inv = self.jump_to_inverted(flat)?;
+        let balance = Balance {
+            delta: flat.delta,
+            inverted_less_flat: self.total_energy(&inv)? - self.total_energy(flat)?,
+            adhesive_flat: self.adhesive_energy(flat),
+            adhesive_inverted: self.adhesive_energy(&inv),
+        };
+        Some((inv, balance))
+    }
+
     /// The inverted state at the delta of the flattened state `flat`, if it lies lower in
     /// Pi than `flat`.
     fn lower_inverted(&self, flat: &Step) -> Option<Step> {
-        let inv = self.jump_to_inverted(flat)?;
-        (self.total_energy(&inv)? < self.total_energy(flat)?).then_some(inv)
+        self.balance(flat).and_then(|(inv, b)| (b.inverted_less_flat < 0.0).then_some(inv))
     }
 
     /// The loading leg under the energy criterion (module doc), stopped at the snap.
@@ -53,7 +72,11 @@ impl ShellProblem<'_> {
             .filter(|&i| cycle.points[i].step.converged && cycle.points[i].step.delta > 0.0)
             .collect();
         let Some(&last) = flat.last() else { return cycle };
-        let Some(mut inv) = self.lower_inverted(&cycle.points[last].step) else { return cycle };
+        let Some((mut inv, balance)) = self.balance(&cycle.points[last].step) else { return cycle };
+        cycle.balance = Some(balance);
+        if balance.inverted_less_flat >= 0.0 {
+            return cycle;
+        }
         // Bisection over the loading states for the first whose inverted state is lower:
         // `hi` is such a state, every state before `lo` (an index one past the last known not
         // to be) is not; the state before the first loaded one is the adhering start.

@@ -144,6 +144,20 @@ pub struct Cycle {
     /// The unstable branch from the limit point of the inverted branch (if traced), in the
     /// order of the arc length.
     pub unstable: Vec<Step>,
+    /// Under `Snap::Energy`, the balance at the last loaded state, when the flattened
+    /// branch reached it and an inverted state was found there.
+    pub balance: Option<Balance>,
+}
+
+/// The energy criterion's comparison at one plate displacement (`Snap::Energy`): the total
+/// potential energy Pi of the inverted state less the flattened one's (> 0: the flattened
+/// state is the lower, no snap there), and the adhesive energies of both (<= 0).
+#[derive(Clone, Copy, Debug)]
+pub struct Balance {
+    pub delta: f64,
+    pub inverted_less_flat: f64,
+    pub adhesive_flat: f64,
+    pub adhesive_inverted: f64,
 }
 
 impl Cycle {

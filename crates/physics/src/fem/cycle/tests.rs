@@ -421,11 +421,23 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
     assert!(pf > pi && balance > 0.0);
     eprintln!("first-order balance gamma/(E h) = {:.3e}", balance / (E * H));
     for g0 in [0.1, 0.05] {
+        let mut estimates = Vec::new();
         for (factor, snaps) in [(0.7, true), (1.4, false)] {
-            let adhering = plate.clone().with_adhesion(factor * balance, g0);
+            let gamma = factor * balance;
+            let adhering = plate.clone().with_adhesion(gamma, g0);
             let c = ShellProblem::new(&model, &adhering, E).load_unload(opt);
             assert!(c.complete, "g0 {g0}, {factor} x balance");
             assert_eq!(c.buckling.is_some(), snaps, "g0 {g0}, {factor} x balance: {:?}", c.buckling);
+            // The balance at delta_max has the verdict's sign, and its Newton step in gamma
+            // (`critical::Margin`) lands on the same threshold from either side: measured
+            // 1.083 and 1.075 times the first-order balance at g0 = 0.1, 1.033 and 1.012 at
+            // 0.05 (the balance is nearly linear in gamma; a factor 2 on either side of it).
+            let b = c.balance.expect("a balance at delta_max");
+            assert!((b.delta - 0.3 * R).abs() < 1e-9 && (b.inverted_less_flat < 0.0) == snaps, "{b:?}");
+            let m = crate::fem::critical::Margin::of(&b, gamma).expect("a margin");
+            estimates.push((gamma - m.value / m.slope) / balance);
         }
+        assert!(estimates.iter().all(|e| (e - 1.0).abs() < 0.15), "g0 {g0}: {estimates:?}");
+        assert!((estimates[0] / estimates[1] - 1.0).abs() < 0.03, "g0 {g0}: {estimates:?}");
     }
 }
