@@ -64,7 +64,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 25;
+    const VERSION: u32 = 26;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];

@@ -72,9 +72,11 @@ pub struct IndentParams {
     /// (default) or `lennard_jones` (16 dgamma / g0^2).
     #[serde(default)]
     pub hold: map::Hold,
-    /// What counts as the snap-through: `instability` (default, the stability test) or the
-    /// thesis' staggered procedure, `{thesis: {passes: n, first_pass: ...}}`
-    /// (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no loop).
+    /// What counts as the snap-through: `instability` (default, the stability test),
+    /// `energy` (the inverted state stores less total potential energy; the whole cycle,
+    /// `fem::cycle::energy`) or the thesis' staggered procedure, `{thesis: {passes: n,
+    /// first_pass: ...}}` (`map::SnapCriterion`), which runs the loading leg only (W is then
+    /// 0: no loop).
     #[serde(default, skip_serializing_if = "map::SnapCriterion::is_default")]
     pub snap: map::SnapCriterion,
     /// Estimate the mesh's share of the errors of every state's force, F_buckling and W by a
@@ -281,7 +283,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 33;
+    const VERSION: u32 = 34;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];

@@ -46,7 +46,7 @@ pub enum SnapCriterion {
     Thesis(ThesisProcedure),
     /// The energy balance Eq. 3.7 estimates (`fem::cycle::Snap::Energy`): the inverted
     /// state stores less total potential energy than the adhered flattened one at some
-    /// delta up to delta_max, or the flattened branch ends. Loading leg only.
+    /// delta up to delta_max, or the flattened branch ends.
     Energy,
 }
 

@@ -20,8 +20,9 @@
 //! at delta_max. The barrier against lifting a touching interior off the plate (the local
 //! criterion) is a strength of order dgamma / g0 instead, and moves with g0.
 
-use super::{Balance, Cycle, CycleOptions, Jump, Snap};
-use crate::fem::indent::{apex_z, Step};
+use super::loading::Loading;
+use super::{Balance, Cycle, CycleOptions, CyclePoint, Jump, Leg, Snap};
+use crate::fem::indent::{apex_z, Options, Step};
 use crate::fem::problem::ShellProblem;
 
 impl ShellProblem<'_> {
@@ -39,7 +40,7 @@ impl ShellProblem<'_> {
 
     /// The inverted state at the delta of the flattened state `flat`, and the balance of
     /// the two; none if no inverted state is found there.
-    fn balance(&self, flat: &Step) -> Option<(Step, Balance)> {
+    pub(super) fn balance(&self, flat: &Step) -> Option<(Step, Balance)> {
         let inv = self.jump_to_inverted(flat)?;
         let balance = Balance {
             delta: flat.delta,
@@ -54,6 +55,63 @@ impl ShellProblem<'_> {
     /// Pi than `flat`.
     fn lower_inverted(&self, flat: &Step) -> Option<Step> {
         self.balance(flat).and_then(|(inv, b)| (b.inverted_less_flat < 0.0).then_some(inv))
+    }
+
+    /// The first of the flattened states `flat` (indices into `points`, in order) whose
+    /// inverted neighbour lies lower, given that the last one's, `inv`, does: bisection over
+    /// the states (Pi_flat - Pi_inv rises with delta). That state's index, its inverted
+    /// state, and the jump there; the state before the first of `flat` is the adhering
+    /// start.
+    fn first_lower(&self, points: &[CyclePoint], flat: &[usize], mut inv: Step) -> (usize, Step, Jump) {
+        // `hi` is such a state, every state before `lo` (an index one past the last known
+        // not to be) is not.
+        let (mut lo, mut hi) = (0usize, flat.len() - 1);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            match self.lower_inverted(&points[flat[mid]].step) {
+                Some(i) => {
+                    hi = mid;
+                    inv = i;
+                }
+                None => lo = mid + 1,
+            }
+        }
+        let at = &points[flat[hi]].step;
+        let before = &points[if hi > 0 { flat[hi - 1] } else { flat[0].saturating_sub(1) }].step;
+        let jump = Jump {
+            delta: at.delta,
+            force_before: at.contact.force,
+            delta_stable: before.delta,
+            force_unstable: at.contact.force,
+            force_after: inv.contact.force,
+            radius_before: at.contact.radius,
+            pull_before: at.contact.adhesive,
+            delta_after: at.delta,
+        };
+        (flat[hi], inv, jump)
+    }
+
+    /// Bisects in delta between the flattened state `lo`, whose inverted neighbour is not
+    /// lower, and `hi`, whose inverted neighbour `inv` is, `opt.bisections` times (fewer if a
+    /// solve fails or leaves the branch): the crossing located to the bracket / 2^bisections.
+    /// The bracket's ends and the inverted state at its upper end.
+    fn refine_crossing(&self, mut lo: Step, mut hi: Step, mut inv: Step, opt: CycleOptions) -> (Step, Step, Step) {
+        for _ in 0..opt.bisections {
+            let mut mid = self.solve_from(0.5 * (lo.delta + hi.delta), &lo, Options::default());
+            mid.stable = mid.converged && self.is_stable(&mid, opt.criterion, opt.hold);
+            if !mid.stable {
+                break;
+            }
+            match self.balance(&mid) {
+                Some((i, b)) if b.inverted_less_flat < 0.0 => {
+                    hi = mid;
+                    inv = i;
+                }
+                Some(_) => lo = mid,
+                None => break,
+            }
+        }
+        (lo, hi, inv)
     }
 
     /// The loading leg under the energy criterion (module doc), stopped at the snap.
@@ -72,39 +130,64 @@ impl ShellProblem<'_> {
             .filter(|&i| cycle.points[i].step.converged && cycle.points[i].step.delta > 0.0)
             .collect();
         let Some(&last) = flat.last() else { return cycle };
-        let Some((mut inv, balance)) = self.balance(&cycle.points[last].step) else { return cycle };
+        let Some((inv, balance)) = self.balance(&cycle.points[last].step) else { return cycle };
         cycle.balance = Some(balance);
         if balance.inverted_less_flat >= 0.0 {
             return cycle;
         }
-        // Bisection over the loading states for the first whose inverted state is lower:
-        // `hi` is such a state, every state before `lo` (an index one past the last known not
-        // to be) is not; the state before the first loaded one is the adhering start.
-        let (mut lo, mut hi) = (0usize, flat.len() - 1);
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            match self.lower_inverted(&cycle.points[flat[mid]].step) {
-                Some(i) => {
-                    hi = mid;
-                    inv = i;
-                }
-                None => lo = mid + 1,
-            }
-        }
-        let at = &cycle.points[flat[hi]].step;
-        let before = &cycle.points[if hi > 0 { flat[hi - 1] } else { flat[0] - 1 }].step;
-        cycle.buckling = Some(Jump {
-            delta: at.delta,
-            force_before: at.contact.force,
-            delta_stable: before.delta,
-            force_unstable: at.contact.force,
-            force_after: inv.contact.force,
-            radius_before: at.contact.radius,
-            pull_before: at.contact.adhesive,
-            delta_after: at.delta,
-        });
-        cycle.points.truncate(flat[hi] + 1);
+        let (at, _, jump) = self.first_lower(&cycle.points, &flat, inv);
+        cycle.buckling = Some(jump);
+        cycle.points.truncate(at + 1);
         cycle.work_loading = super::work(&cycle.points);
         cycle
+    }
+
+    /// The whole cycle under the energy criterion. The loading leg is traced as under the
+    /// local criterion (the flattened branch, and past its end the jump and the inverted
+    /// branch to delta_max); then the balance is taken at the last flattened state (before
+    /// the branch ends, or at delta_max). Where the inverted state lies lower there, the
+    /// snap is at the first flattened state where it does (`first_lower`): the leg is cut
+    /// there, jumps to that inverted state and follows the inverted branch to delta_max
+    /// (`Loading::resumed`). The unloading leg follows as under the local criterion.
+    pub(super) fn energy_cycle(&self, opt: CycleOptions) -> Cycle {
+        let local = CycleOptions { snap: Snap::Instability, ..opt };
+        let mut loading = self.local_loading(local);
+        if loading.complete {
+            let end = loading.buckling.map_or(f64::INFINITY, |b| b.delta_stable);
+            let flat: Vec<usize> = (0..loading.points.len())
+                .filter(|&i| {
+                    let p = &loading.points[i];
+                    p.step.converged && !p.inverted && p.step.delta > 0.0 && p.step.delta <= end
+                })
+                .collect();
+            let lower = flat.last().and_then(|&last| self.balance(&loading.points[last].step));
+            if let Some((inv, _)) = lower.filter(|(_, b)| b.inverted_less_flat < 0.0) {
+                let (at, inv, _) = self.first_lower(&loading.points, &flat, inv);
+                let mut points = loading.points;
+                let at = points[at].step.clone();
+                points.truncate(points.iter().position(|p| p.step.delta >= at.delta).unwrap_or(points.len()));
+                let before = points.last().expect("the start precedes every loaded state").step.clone();
+                let (lo, hi, mut inv) = self.refine_crossing(before.clone(), at, inv, local);
+                let flat = |step: Step| CyclePoint { step, leg: Leg::Loading, inverted: false };
+                if lo.delta > before.delta {
+                    points.push(flat(lo.clone()));
+                }
+                points.push(flat(hi.clone()));
+                inv.stable = self.is_stable(&inv, local.criterion, local.hold);
+                let jump = Jump {
+                    delta: hi.delta,
+                    force_before: hi.contact.force,
+                    delta_stable: lo.delta,
+                    force_unstable: hi.contact.force,
+                    force_after: inv.contact.force,
+                    radius_before: hi.contact.radius,
+                    pull_before: hi.contact.adhesive,
+                    delta_after: hi.delta,
+                };
+                loading = Loading::resumed(self, local, points, inv, jump);
+                loading.run();
+            }
+        }
+        self.with_unloading(local, loading)
     }
 }

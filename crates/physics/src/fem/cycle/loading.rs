@@ -85,6 +85,23 @@ impl<'p, 'a> Loading<'p, 'a> {
         }
     }
 
+    /// The leg resumed after a snap found by other means (the energy criterion): the states
+    /// `points` up to the snap, then the inverted state `inv` it jumps to at the same delta.
+    pub(super) fn resumed(
+        problem: &'p ShellProblem<'a>,
+        opt: CycleOptions,
+        mut points: Vec<CyclePoint>,
+        inv: Step,
+        jump: Jump,
+    ) -> Loading<'p, 'a> {
+        let mut leg = Loading::new(problem, opt, inv.clone());
+        points.push(CyclePoint { step: inv, leg: Leg::Loading, inverted: true });
+        leg.points = points;
+        leg.inverted = true;
+        leg.buckling = Some(jump);
+        leg
+    }
+
     /// Steps to delta_max, or to the end the options ask for.
     pub(super) fn run(&mut self) {
         while self.cur.delta < self.opt.delta_max * (1.0 - 1e-12) {

@@ -81,7 +81,7 @@ pub enum Snap {
     Staggered(Staggered),
     /// The energy balance (`energy`): the snap where the inverted state lies lower in total
     /// potential energy than the adhered flattened one, or where the flattened branch ends.
-    /// Runs the loading leg only.
+    /// A cycle that unloads jumps there and comes back as under `Instability`.
     Energy,
 }
 
@@ -257,14 +257,26 @@ impl ShellProblem<'_> {
     /// (`unloading`).
     pub fn load_unload(&self, opt: CycleOptions) -> Cycle {
         if opt.snap == Snap::Energy {
-            return self.energy_loading(opt);
+            return if opt.unload && !opt.stop_at_buckling { self.energy_cycle(opt) } else { self.energy_loading(opt) };
         }
         if let Snap::Staggered(procedure) = opt.snap {
             let (points, buckling, complete) = self.staggered_loading(&opt, procedure);
             return Cycle { work_loading: work(&points), points, buckling, complete, ..Default::default() };
         }
+        let loading = self.local_loading(opt);
+        self.with_unloading(opt, loading)
+    }
+
+    /// The loading leg from the cycle's start, run.
+    fn local_loading(&self, opt: CycleOptions) -> Loading<'_, '_> {
         let mut loading = Loading::new(self, opt, self.cycle_start(opt.delta_max / opt.steps as f64));
         loading.run();
+        loading
+    }
+
+    /// The cycle of a loading leg that has run: with its unloading leg unless the options
+    /// end the cycle at the snap or on loading.
+    fn with_unloading(&self, opt: CycleOptions, loading: Loading) -> Cycle {
         let mut cycle = Cycle {
             complete: loading.complete,
             buckling: loading.buckling,

@@ -407,8 +407,8 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
     // state in contact is -gamma times its area, whatever g0. Measured on the thesis'
     // default mesh at h/R = 0.06: 3.17e-3 E h by this balance, 3.28e-3 (g0 = 0.1 mm) and
     // 3.07e-3 (0.05 mm) by the criterion. Here (60 x 3 elements, perfect shell, to
-    // delta/R = 0.3) at 0.7 and 1.4 times the balance, with g0 = 0.1 and 0.05: the shell
-    // snaps below it and not above, at either range.
+    // delta/R = 0.3) at 0.7 and 1.4 times the balance, with g0 = 0.1, 0.05 and 0.025: the shell
+    // snaps below it and not above, at each range.
     let (model, plate) = thesis_shell();
     let problem = ShellProblem::new(&model, &plate, E);
     let opt = snap_probe(Snap::Energy);
@@ -420,7 +420,8 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
     let balance = (pf - pi) / (flat.contact.area - inv.contact.area);
     assert!(pf > pi && balance > 0.0);
     eprintln!("first-order balance gamma/(E h) = {:.3e}", balance / (E * H));
-    for g0 in [0.1, 0.05] {
+    let mut by_range = Vec::new();
+    for g0 in [0.1, 0.05, 0.025] {
         let mut estimates = Vec::new();
         for (factor, snaps) in [(0.7, true), (1.4, false)] {
             let gamma = factor * balance;
@@ -439,5 +440,63 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
         }
         assert!(estimates.iter().all(|e| (e - 1.0).abs() < 0.15), "g0 {g0}: {estimates:?}");
         assert!((estimates[0] / estimates[1] - 1.0).abs() < 0.03, "g0 {g0}: {estimates:?}");
+        by_range.push(estimates[1]);
     }
+    // The threshold converges as the range of the law goes: measured 1.075, 1.012, 0.989
+    // times the balance at g0 = 0.1, 0.05, 0.025 mm, each halving's change about a third of
+    // the last (first order in g0 would be a half). Asserted: each change at most 0.6 of
+    // the last, and the two shortest ranges within 3 % (this mesh does not resolve g0 =
+    // 0.025 mm; on the default mesh, which does, docs/shell.md gives the same within 1 %).
+    let changes = [by_range[0] - by_range[1], by_range[1] - by_range[2]];
+    assert!(changes[1].abs() <= 0.6 * changes[0].abs(), "{by_range:?}");
+    assert!((by_range[1] / by_range[2] - 1.0).abs() < 0.03, "{by_range:?}");
+}
+
+#[test]
+fn the_energy_cycle_snaps_where_the_balance_crosses_and_comes_back() {
+    // The whole cycle under the energy criterion (`energy_cycle`), on the test shell to
+    // delta/R = 0.3 under the tangent criterion with the imperfection of the thesis' figures.
+    let (model, plate) = thesis_shell();
+    let model = model.with_apex_force(0.05 * E * H.powi(3) / R);
+    let cycle_opt =
+        |snap: Snap| CycleOptions { criterion: Criterion::Tangent, trace_unstable: false, snap, ..options(0.3) };
+    // Without adhesion the inverted state comes to lie lower close to the flattened
+    // branch's limit point (on the thesis' mesh just after it: 0.16 against 0.153; here
+    // measured just before it, delta = 2.556 against 2.578): both cycles follow the same
+    // states up to the energy's snap, which lies within 2 % of the local one.
+    let problem = ShellProblem::new(&model, &plate, E);
+    let local = problem.load_unload(cycle_opt(Snap::Instability));
+    let energy = problem.load_unload(cycle_opt(Snap::Energy));
+    assert!(local.is_closed() && energy.is_closed());
+    let (l, e) = (local.buckling.unwrap(), energy.buckling.unwrap());
+    assert!(e.delta <= l.delta && e.delta > 0.98 * l.delta, "{e:?} {l:?}");
+    let before = |c: &Cycle| -> Vec<(f64, f64)> {
+        c.points
+            .iter()
+            .filter(|p| p.step.delta < e.delta_stable)
+            .map(|p| (p.step.delta, p.step.contact.force))
+            .collect()
+    };
+    assert!(before(&energy).len() > 10 && before(&energy) == before(&local)[..before(&energy).len()]);
+    // With adhesion above the local criterion's gamma_c (no limit point to delta_max) and
+    // below the energy balance at delta_max: the snap lies where the balance crosses, located
+    // by bisection in delta to a step / 2^6 (the last flattened state before it has no lower
+    // inverted neighbour, the one at it has), the leg goes on inverted to delta_max, and comes
+    // back with a snap-back and a loop.
+    let adhering = plate.clone().with_adhesion(1e-3 * E * H, 0.1);
+    let problem = ShellProblem::new(&model, &adhering, E);
+    assert!(problem.load_unload(snap_probe(Snap::Instability)).buckling.is_none(), "no local snap");
+    let c = problem.load_unload(cycle_opt(Snap::Energy));
+    assert!(c.is_closed(), "{:?}", c.buckling);
+    let b = c.buckling.expect("an energy snap");
+    let step = 0.3 * R / 30.0;
+    assert!(b.delta > 0.05 * R && b.delta < 0.3 * R && b.delta - b.delta_stable <= step / 64.0 * (1.0 + 1e-9), "{b:?}");
+    let state = |d: f64| c.points.iter().find(|p| p.leg == Leg::Loading && p.step.delta == d && !p.inverted).unwrap();
+    let (before, at) = (&state(b.delta_stable).step, &state(b.delta).step);
+    assert!(problem.balance(before).is_some_and(|(_, x)| x.inverted_less_flat >= 0.0));
+    assert!(problem.balance(at).is_some_and(|(_, x)| x.inverted_less_flat < 0.0));
+    assert!(b.force_after < b.force_before, "{b:?}");
+    let after: Vec<_> = c.points.iter().filter(|p| p.leg == Leg::Loading && p.step.delta > b.delta).collect();
+    assert!(!after.is_empty() && after.iter().all(|p| p.inverted));
+    assert!(c.snap_back.is_some() && c.dissipated() > 0.0, "{:?} {}", c.snap_back, c.dissipated());
 }
