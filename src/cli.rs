@@ -101,12 +101,18 @@ pub(crate) struct RunArgs {
     /// Refuse (exit 3) instead of waiting when another repro holds the cache.
     #[arg(long)]
     pub(crate) no_wait: bool,
-    /// Where figures are published.
-    #[arg(long, default_value = "figures")]
-    pub(crate) figures: PathBuf,
-    /// Where stage tables are published.
-    #[arg(long, default_value = "tables")]
-    pub(crate) tables: PathBuf,
+    /// Where figures are published (default `figures`; with `-S` and without `--publish`,
+    /// `overrides/<pipeline>/<settings>/figures`).
+    #[arg(long)]
+    pub(crate) figures: Option<PathBuf>,
+    /// Where stage tables are published (default `tables`; with `-S` and without
+    /// `--publish`, `overrides/<pipeline>/<settings>/tables`).
+    #[arg(long)]
+    pub(crate) tables: Option<PathBuf>,
+    /// With `-S`, publish into `figures/` and `tables/` (or `--figures`, `--tables`) as a run
+    /// of the file alone does, over what the pipeline file produces.
+    #[arg(long)]
+    pub(crate) publish: bool,
     /// No progress bars.
     #[arg(long, short)]
     pub(crate) quiet: bool,

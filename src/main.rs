@@ -81,6 +81,7 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
         no_wait,
         figures,
         tables,
+        publish,
         quiet,
         executor,
         partition,
@@ -89,6 +90,16 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
         time_limit,
     } = args;
     let p = load_with(&pipeline, registry, &set)?;
+    // A run with parameters set on the command line publishes apart from the file's outputs.
+    let settings: Vec<String> = set.iter().map(ToString::to_string).collect();
+    let (figures, tables, apart) =
+        repro::pipeline::publish::publish_dirs(&pipeline, &settings, figures, tables, publish);
+    if let (Some(dir), false, false) = (&apart, dry_run, quiet) {
+        eprintln!(
+            "repro: parameters set with -S: this run publishes into {}/ (figures/ and tables/ stay the pipeline file's; --publish writes there)",
+            dir.display()
+        );
+    }
     let executor = match executor {
         ExecutorArg::Local => Executor::Local,
         ExecutorArg::Slurm => Executor::Slurm(SlurmOptions { partition, max_jobs, retries, ..Default::default() }),
@@ -287,6 +298,17 @@ fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
     for (path, r) in &runs {
         let name = path.file_stem().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
         let set = if r.overrides.is_empty() { String::new() } else { format!(" -S {}", r.overrides.join(" -S ")) };
+        // Where a run with settings published, when apart from the file's outputs.
+        let folder: std::collections::BTreeSet<String> = r
+            .published
+            .iter()
+            .filter(|f| f.starts_with("overrides/"))
+            .filter_map(|f| Some(std::path::Path::new(f).parent()?.parent()?.display().to_string()))
+            .collect();
+        let set = match folder.first() {
+            Some(dir) => format!("{set}  -> {dir}/"),
+            None => set,
+        };
         let commit = r.git_commit.as_deref().map_or(String::new(), |c| {
             format!("  at {}{}", &c[..c.len().min(12)], if c.ends_with("(modified)") { " (modified)" } else { "" })
         });

@@ -144,3 +144,99 @@ fn a_run_records_the_git_commit_of_its_pipeline() {
     let (_, _, report) = s.run("p.yaml", &[]);
     assert_eq!(report.0["git_commit"], format!("{head} (modified)").as_str());
 }
+
+/// A persson sweep over V0 at one 1/k and a figure whose title names `{column}`s.
+fn titled_pipeline(title: &str) -> String {
+    format!(
+        r#"stages:
+  - name: persson
+    kind: theory.persson
+    params: {{inv_k: 2, V0: [0.1, 1, 10]}}
+  - name: fig
+    kind: figure
+    needs: [persson]
+    params:
+      title: "{title}"
+      x_label: "V0"
+      y_label: "mu*"
+      log_x: true
+      layers:
+        - data: {{from: persson, x: V0, y: mu_star, label: "Persson"}}
+"#
+    )
+}
+
+#[test]
+fn a_figure_title_says_the_parameters_of_the_data_it_draws() {
+    let s = Scratch::new("titles");
+    s.write("p.yaml", &titled_pipeline("μ* vs V0 at 1/k = {inv_k}"));
+    assert_eq!(s.run("p.yaml", &[]).0, 0);
+    let svg = String::from_utf8(s.read("figures/fig.svg")).unwrap();
+    assert!(svg.contains("1/k = 2\n"), "{svg}");
+    // Another 1/k on the command line: the run publishes into a folder of its own, whose
+    // title follows it; the file's figure is untouched; `repro runs` names the folder.
+    let file_figure = s.read("figures/fig.svg");
+    let (code, err, _) = s.run("p.yaml", &["-S", "persson.inv_k=10"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(s.read("figures/fig.svg"), file_figure);
+    let svg = String::from_utf8(s.read("overrides/p/persson.inv_k=10/figures/fig.svg")).unwrap();
+    assert!(svg.contains("1/k = 10\n") && !svg.contains("1/k = 2\n"), "{svg}");
+    assert!(s.path("overrides/p/persson.inv_k=10/tables/persson.parquet").exists());
+    let runs = String::from_utf8_lossy(&s.repro(&["runs"]).stdout).to_string();
+    assert!(runs.contains("-S persson.inv_k=10  -> overrides/p/persson.inv_k=10/"), "{runs}");
+    // Asked to (`--publish`), it writes over the file's.
+    assert_eq!(s.run("p.yaml", &["-S", "persson.inv_k=10", "--publish"]).0, 0);
+    let svg = String::from_utf8(s.read("figures/fig.svg")).unwrap();
+    assert!(svg.contains("1/k = 10\n"), "{svg}");
+    // A column that takes several values in the drawn data belongs in a label: the figure
+    // fails and says which values.
+    s.write("p.yaml", &titled_pipeline("μ* at V0 = {V0}"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_ne!(code, 0, "{err}");
+    assert!(
+        err.contains("`title` names `{V0}`, which takes 3 values in the data the figure draws (0.1, 1, 10)"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_column_that_does_not_exist_fails_the_dry_run_at_the_line_naming_it() {
+    // A figure layer, a title's placeholder and a claim naming columns the kind does not
+    // declare: each an error at its line before anything runs, with the nearest column.
+    let s = Scratch::new("columns");
+    let mut text = titled_pipeline("μ* at {inv_kk}").replace("y: mu_star", "y: mu_str");
+    text.push_str(
+        r#"  - name: c
+    kind: claim
+    needs: [persson]
+    params:
+      id: t.c
+      source: "s"
+      statement: "s"
+      quantity: {from: persson, y: mu_star, x: V00, aggregate: argmax}
+      thesis: {value: 1}
+      expect: differs
+      reason: "r"
+"#,
+    );
+    s.write("p.yaml", &text);
+    let out = s.repro(&["run", "p.yaml", "--dry-run"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("p.yaml:9:14: error: stage `fig`: `title` reads column `inv_kk`")
+            && err.contains("(did you mean `inv_k`?)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("p.yaml:14:43: error: stage `fig`: `layers[0].data.y` reads column `mu_str`")
+            && err.contains("(did you mean `mu_star`?)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("p.yaml:22:48: error: stage `c`: `quantity.x` reads column `V00`")
+            && err.contains("(did you mean `V0`?)"),
+        "{err}"
+    );
+    assert_eq!(err.matches("error:").count(), 3, "{err}");
+}

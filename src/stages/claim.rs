@@ -12,7 +12,7 @@
 
 use super::check;
 use crate::numerics::fit::power_law;
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use crate::pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{format_number, ColumnData, Table};
 use anyhow::{bail, Context, Result};
 use schemars::JsonSchema;
@@ -344,6 +344,19 @@ impl Kind for Claim {
 
     fn referenced_stages(p: &ClaimParams) -> Vec<(String, String)> {
         vec![("quantity.from".into(), p.quantity.from.clone())]
+    }
+
+    fn read_columns(p: &ClaimParams) -> Vec<ColumnRead> {
+        let q = &p.quantity;
+        let read = |path: String, column: &str| ColumnRead { path, stage: Some(q.from.clone()), column: column.into() };
+        let mut reads = Vec::new();
+        // `count` reads no y.
+        if q.aggregate != Aggregate::Count {
+            reads.push(read("quantity.y".into(), &q.y));
+        }
+        reads.extend(q.x.iter().map(|x| read("quantity.x".into(), x)));
+        reads.extend(q.filter.keys().map(|k| read(format!("quantity.filter.{k}"), k)));
+        reads
     }
 
     fn run(p: &ClaimParams, inputs: &Inputs) -> Result<Output> {

@@ -32,6 +32,8 @@ pub struct FitPowerLaw;
 impl Kind for FitPowerLaw {
     const NAME: &'static str = "fit.powerlaw";
     const VERSION: u32 = 1;
+    /// The group column is named after the fitted table's (`group_by`).
+    const OPEN_COLUMNS: bool = true;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Power law y = c x^s fitted over an x range (log-log least squares), with standard errors";

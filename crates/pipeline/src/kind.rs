@@ -79,6 +79,19 @@ pub struct ShownRange {
     pub path: String,
 }
 
+/// A column of another stage's table that a stage reads (a figure layer's `x`, a claim's
+/// `y`, a placeholder `{column}` of a title): checked against the columns that stage's kind
+/// declares before anything runs.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct ColumnRead {
+    /// The parameter that names it, e.g. `layers[2].data.y` (where an error is located).
+    pub path: String,
+    /// The stage read; none: any of the stages the reader refers to (a title's placeholder
+    /// is resolved from the data the figure draws).
+    pub stage: Option<String>,
+    pub column: String,
+}
+
 /// A stage kind, typed. Implement this; the registry wraps it.
 pub trait Kind: Send + Sync + 'static {
     /// The name used in pipeline files, e.g. `theory.persson`.
@@ -97,6 +110,9 @@ pub trait Kind: Send + Sync + 'static {
     /// The columns of this kind's table, in order (some only for some parameters, e.g. a
     /// material's), for `repro kinds KIND`; a test checks that every emitted column is here.
     const COLUMNS: &'static [&'static str] = &[];
+    /// The table may carry columns beyond `COLUMNS`, named by the parameters (a fit's group
+    /// column): columns read from it are not checked.
+    const OPEN_COLUMNS: bool = false;
     type Params: DeserializeOwned + Serialize + JsonSchema + Send + Sync;
 
     /// Physical and logical validity of one point's parameters.
@@ -109,6 +125,10 @@ pub trait Kind: Send + Sync + 'static {
     }
     /// Ranges of other stages' columns that this stage shows (see [`ShownRange`]).
     fn shown_ranges(_p: &Self::Params) -> Vec<ShownRange> {
+        Vec::new()
+    }
+    /// Columns of other stages' tables that this stage reads (see [`ColumnRead`]).
+    fn read_columns(_p: &Self::Params) -> Vec<ColumnRead> {
         Vec::new()
     }
     /// The most memory a task of these parameters allocates, in bytes, estimated before it
@@ -130,6 +150,8 @@ pub trait DynKind: Send + Sync {
     fn doc(&self) -> &'static str;
     fn sweepable(&self) -> &'static [&'static str];
     fn columns(&self) -> &'static [&'static str];
+    /// Whether the table may carry columns beyond `columns` (`Kind::OPEN_COLUMNS`).
+    fn open_columns(&self) -> bool;
     fn time_limit_s(&self) -> f64;
     fn params_schema(&self) -> Value;
     /// Parses and validates one point; returns its canonical parameters (defaults filled in)
@@ -139,6 +161,8 @@ pub trait DynKind: Send + Sync {
     /// The ranges a point with these parameters shows; none when they do not parse (their
     /// errors are reported by `check`).
     fn shown_ranges(&self, params: &Value) -> Vec<ShownRange>;
+    /// The columns a point with these parameters reads; none when they do not parse.
+    fn read_columns(&self, params: &Value) -> Vec<ColumnRead>;
     /// [`Kind::memory_bytes`] of one point's canonical parameters.
     fn memory_bytes(&self, params: &Value) -> Option<u64>;
 }
@@ -301,6 +325,9 @@ impl<K: Kind> DynKind for Typed<K> {
     fn columns(&self) -> &'static [&'static str] {
         K::COLUMNS
     }
+    fn open_columns(&self) -> bool {
+        K::OPEN_COLUMNS
+    }
     fn time_limit_s(&self) -> f64 {
         K::TIME_LIMIT_S
     }
@@ -326,6 +353,9 @@ impl<K: Kind> DynKind for Typed<K> {
     }
     fn shown_ranges(&self, params: &Value) -> Vec<ShownRange> {
         parse::<K>(params).map(|p| K::shown_ranges(&p)).unwrap_or_default()
+    }
+    fn read_columns(&self, params: &Value) -> Vec<ColumnRead> {
+        parse::<K>(params).map(|p| K::read_columns(&p)).unwrap_or_default()
     }
     fn memory_bytes(&self, params: &Value) -> Option<u64> {
         parse::<K>(params).ok().and_then(|p| K::memory_bytes(&p))

@@ -154,3 +154,61 @@ pub fn publish_stage(
     }
     Ok(written)
 }
+
+/// The folder a run with parameters set on the command line (`-S`) publishes into unless
+/// told otherwise: `overrides/<pipeline>/<the settings>` (characters other than letters,
+/// digits and `._=+-` as `_`, each setting a path component's part joined by `,`; a long
+/// name ends with a hash of the whole). The figures and tables that the pipeline file
+/// itself produces are then never overwritten by a run that computed something else, and
+/// the same settings always publish to the same place.
+pub fn overrides_folder(pipeline: &Path, overrides: &[String]) -> std::path::PathBuf {
+    let stem = pipeline.file_stem().map_or_else(|| "pipeline".to_string(), |s| s.to_string_lossy().to_string());
+    let safe = |s: &str| -> String {
+        s.chars().map(|c| if c.is_ascii_alphanumeric() || "._=+-".contains(c) { c } else { '_' }).collect()
+    };
+    let joined = overrides.iter().map(|o| safe(o)).collect::<Vec<_>>().join(",");
+    let name = if joined.len() > 100 {
+        let hash = blake3::hash(overrides.join("\n").as_bytes()).to_hex();
+        format!("{}-{}", &joined[..80], &hash[..16])
+    } else {
+        joined
+    };
+    Path::new("overrides").join(safe(&stem)).join(name)
+}
+
+/// Where a run publishes: `figures` and `tables` as given, else `figures/` and `tables/`,
+/// except that a run with settings (`-S`) and without `publish` defaults to its own folder
+/// (`overrides_folder`, returned too).
+pub fn publish_dirs(
+    pipeline: &Path,
+    settings: &[String],
+    figures: Option<std::path::PathBuf>,
+    tables: Option<std::path::PathBuf>,
+    publish: bool,
+) -> (std::path::PathBuf, std::path::PathBuf, Option<std::path::PathBuf>) {
+    let apart = (!settings.is_empty() && !publish).then(|| overrides_folder(pipeline, settings));
+    let base = |sub: &str| apart.as_ref().map_or_else(|| sub.into(), |dir| dir.join(sub));
+    (figures.unwrap_or_else(|| base("figures")), tables.unwrap_or_else(|| base("tables")), apart)
+}
+
+#[cfg(test)]
+mod overrides_folder_tests {
+    use super::overrides_folder;
+    use std::path::Path;
+
+    #[test]
+    fn settings_name_their_folder() {
+        let p = Path::new("pipelines/thesis.yaml");
+        assert_eq!(
+            overrides_folder(p, &["max_vs_lambda.W=1".into(), "rolling.k=[0.1, 1]".into()]),
+            Path::new("overrides/thesis/max_vs_lambda.W=1,rolling.k=_0.1__1_")
+        );
+        // A long list: its first 80 characters and a hash, so that two lists differ.
+        let long: Vec<String> = (0..20).map(|i| format!("stage{i}.param=1")).collect();
+        let mut other = long.clone();
+        other[19] = "stage19.param=2".into();
+        let (a, b) = (overrides_folder(p, &long), overrides_folder(p, &other));
+        assert_ne!(a, b);
+        assert!(a.file_name().unwrap().len() == 97, "{a:?}");
+    }
+}

@@ -232,7 +232,7 @@ fn sweep<'py>(
 /// A run of a pipeline file: its targets (all stages if none) and what they need, with
 /// `overrides` ("stage.param=value", the value YAML) set as `repro run -S` sets them.
 #[pyfunction]
-#[pyo3(signature = (pipeline, targets, overrides, cache, figures, tables, jobs=None, progress=false, dry_run=false, force=Vec::new(), on_progress=None, wait=true))]
+#[pyo3(signature = (pipeline, targets, overrides, cache, figures=None, tables=None, jobs=None, progress=false, dry_run=false, force=Vec::new(), on_progress=None, wait=true, publish=false))]
 #[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
@@ -240,15 +240,18 @@ fn run<'py>(
     targets: Vec<String>,
     overrides: Vec<String>,
     cache: PathBuf,
-    figures: PathBuf,
-    tables: PathBuf,
+    figures: Option<PathBuf>,
+    tables: Option<PathBuf>,
     jobs: Option<usize>,
     progress: bool,
     dry_run: bool,
     force: Vec<String>,
     on_progress: Option<Bound<'py, PyAny>>,
     wait: bool,
+    publish: bool,
 ) -> PyResult<(String, Bound<'py, PyDict>, Vec<String>)> {
+    // With settings, apart from the file's outputs unless told (as `repro run -S`).
+    let (figures, tables, _) = repro::pipeline::publish::publish_dirs(&pipeline, &overrides, figures, tables, publish);
     let overrides = overrides
         .iter()
         .map(|o| o.parse::<Override>().map_err(|m| error(py, "UsageError", (m,))))

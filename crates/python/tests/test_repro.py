@@ -147,6 +147,18 @@ def test_run_returns_the_report_and_tables(tmp_path):
     assert (again.computed, again.cached) == (0, 5)
 
 
+def test_a_run_with_settings_publishes_apart_unless_asked(tmp_path, monkeypatch):
+    # As `repro run -S`: into overrides/<pipeline>/<settings>/, never over tables/.
+    monkeypatch.chdir(tmp_path)
+    good = write_good(tmp_path)
+    repro.run(good, cache=tmp_path / "cache", set={"persson.inv_k": 3})
+    stem = os.path.splitext(os.path.basename(good))[0]
+    assert (tmp_path / "overrides" / stem / "persson.inv_k=3" / "tables" / "persson.parquet").exists()
+    assert not (tmp_path / "tables").exists()
+    repro.run(good, cache=tmp_path / "cache", set={"persson.inv_k": 3}, publish=True)
+    assert (tmp_path / "tables" / "persson.parquet").exists()
+
+
 def test_a_failed_point_raises_with_its_reason_and_the_others_are_cached(tmp_path):
     with pytest.raises(repro.TaskFailed) as e:
         repro.sweep("util.fail", message="boom", x=[1, 0], cache=tmp_path / "cache")

@@ -119,10 +119,10 @@ impl Kind for FemBuckling {
         let m = p.point_model();
         m.validate(&mut e);
         m.validate_mesh(p.h_over_R, &mut e);
-        if p.dissipation && matches!(m.snap, SnapCriterion::Thesis(_) | SnapCriterion::Energy) {
+        if p.dissipation && matches!(m.snap, SnapCriterion::Thesis(_)) {
             e.push(FieldError::new(
                 "dissipation",
-                "`snap: {thesis: ...}` and `snap: energy` run the loading leg only: set `dissipation: false`",
+                "`snap: {thesis: ...}` runs the loading leg only: set `dissipation: false`",
             ));
         }
         e

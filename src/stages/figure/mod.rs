@@ -6,8 +6,9 @@
 mod draw;
 mod legend;
 mod series;
+mod template;
 
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, ShownRange};
+use crate::pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, ShownRange};
 use crate::pipeline::table::{ColumnData, Table};
 use anyhow::Result;
 use draw::render;
@@ -182,7 +183,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 13;
+    const VERSION: u32 = 14;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     const COLUMNS: &'static [&'static str] =
@@ -240,6 +241,35 @@ impl Kind for Figure {
             .collect()
     }
 
+    /// Each data layer's columns (x, y, y_error, group_by, the filter's and its label's
+    /// `{column}`s) of its stage, each fit layer's filter and label columns of its fit, and
+    /// the title's and axis labels' `{column}`s of any stage the figure needs.
+    fn read_columns(p: &FigureParams) -> Vec<ColumnRead> {
+        let mut reads = template::text_reads(p);
+        for (i, l) in p.layers.iter().enumerate() {
+            let (kind, from, label, filter) = match l {
+                Layer::Data(d) => ("data", &d.from, &d.label, &d.filter),
+                Layer::Fit(f) => ("fit", &f.from, &f.label, &f.filter),
+                Layer::Guide(_) => continue,
+            };
+            let path = |field: &str| format!("layers[{i}].{kind}.{field}");
+            let read = |field: &str, column: &str| ColumnRead {
+                path: path(field),
+                stage: Some(from.clone()),
+                column: column.to_string(),
+            };
+            if let Layer::Data(d) = l {
+                reads.push(read("x", &d.x));
+                reads.push(read("y", &d.y));
+                reads.extend(d.y_error.iter().map(|c| read("y_error", c)));
+                reads.extend(d.group_by.iter().map(|c| read("group_by", c)));
+            }
+            reads.extend(filter.keys().map(|c| read("filter", c)));
+            reads.extend(template::placeholders(label).iter().map(|c| read("label", c)));
+        }
+        reads
+    }
+
     /// With an `x_range`, every data layer shows its `x` column of its stage over it.
     fn shown_ranges(p: &FigureParams) -> Vec<ShownRange> {
         let Some([from, to]) = p.x_range else { return Vec::new() };
@@ -279,7 +309,7 @@ impl Kind for Figure {
             }
             s.points.retain(drawable);
         }
-        let svg = render(p, &series)?;
+        let svg = render(&template::filled(p, inputs)?, &series)?;
         let rows = series.iter().flat_map(|s| s.points.iter().map(move |&(x, y)| (s, x, y)));
         let table = Table::new()
             .with("series", ColumnData::Str(rows.clone().map(|(s, _, _)| s.label.clone()).collect()))

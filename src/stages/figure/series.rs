@@ -3,7 +3,7 @@
 
 use super::{DataLayer, FitLayer, GuideLayer, Style};
 use crate::pipeline::kind::Inputs;
-use crate::pipeline::table::{format_number, ColumnData};
+use crate::pipeline::table::{format_number, ColumnData, Table};
 use anyhow::Context;
 use anyhow::Result;
 use std::collections::BTreeMap;
@@ -29,6 +29,18 @@ pub(super) struct Series {
 /// line breaks, whether rows were left out since its last point, and its points' errors.
 pub(super) type Curve = (usize, Vec<(f64, f64)>, Vec<usize>, bool, Vec<f64>);
 
+/// Which rows of the layer's table `t` its filter keeps.
+pub(super) fn kept_rows(layer: &DataLayer, t: &Table) -> Result<Vec<bool>> {
+    let mut keep = vec![true; t.n_rows()];
+    for (col, value) in &layer.filter {
+        let c = t.f64_column(col).with_context(|| format!("filter of layer from `{}`", layer.from))?;
+        for (k, v) in keep.iter_mut().zip(c) {
+            *k &= (v - value).abs() <= 1e-9 * value.abs().max(1e-300);
+        }
+    }
+    Ok(keep)
+}
+
 /// Curves of one data layer, in the order their group values first appear.
 pub(super) fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Series>> {
     let t = inputs.table(&layer.from)?;
@@ -38,13 +50,7 @@ pub(super) fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Seri
         Some(e) => Some(t.f64_column(e).with_context(|| format!("y_error of layer from `{}`", layer.from))?),
         None => None,
     };
-    let mut keep = vec![true; t.n_rows()];
-    for (col, value) in &layer.filter {
-        let c = t.f64_column(col).with_context(|| format!("filter of layer from `{}`", layer.from))?;
-        for (k, v) in keep.iter_mut().zip(c) {
-            *k &= (v - value).abs() <= 1e-9 * value.abs().max(1e-300);
-        }
-    }
+    let keep = kept_rows(layer, t)?;
     let group: Option<&ColumnData> = match &layer.group_by {
         Some(g) => Some(t.column(g).with_context(|| format!("no column `{g}` to group by in `{}`", layer.from))?),
         None => None,

@@ -28,7 +28,7 @@ mod yaml;
 
 pub use yaml::to_json;
 
-use crate::kind::{FieldError, Registry};
+use crate::kind::{ColumnRead, FieldError, Registry};
 use crate::spec::{Diagnostic, InvalidPipeline, Location, MatchedNeed, Override, Pipeline, Point, Stage, Warning};
 use marked_yaml::types::{MarkedMappingNode, MarkedScalarNode, Node};
 use std::collections::{BTreeMap, BTreeSet};
@@ -222,6 +222,7 @@ pub fn parse_with(
         Some(other) => cx.err(cx.loc(other), "`stages` must be a list of stages"),
     }
     check_graph(&mut cx, &stages, &declared);
+    check_columns_read(&mut cx, &stages, registry);
     if cx.errors.is_empty() {
         let stages: Vec<Stage> = stages.into_iter().map(|s| s.stage).collect();
         check_ranges_shown(&mut cx, &stages);
@@ -244,6 +245,8 @@ struct ParsedStage {
     need_locations: Vec<Location>,
     /// Where the `match` of each of `stage.matched` is.
     match_locations: Vec<Location>,
+    /// The columns of other stages this one reads, and where each is named.
+    column_reads: Vec<(ColumnRead, Location)>,
 }
 
 fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedStage> {
@@ -340,6 +343,14 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
             }
         }
     }
+    let reads: BTreeSet<ColumnRead> = checked.iter().flat_map(|p| kind.read_columns(&p.params)).collect();
+    let column_reads = reads
+        .into_iter()
+        .map(|r| {
+            let location = locate(cx, params_map, &BTreeMap::new(), &FieldError::new(&r.path, ""));
+            (r, location)
+        })
+        .collect();
     for (path, stage) in referenced {
         if !needs.contains(&stage) {
             let location = locate(cx, params_map, &BTreeMap::new(), &FieldError::new(&path, ""));
@@ -364,7 +375,49 @@ fn parse_stage(cx: &mut Ctx, node: &Node, registry: &Registry) -> Option<ParsedS
         },
         need_locations,
         match_locations,
+        column_reads,
     })
+}
+
+/// Every column a stage reads from another (`Kind::read_columns`) must be one that the other
+/// stage's kind declares, unless its table is open (`Kind::OPEN_COLUMNS`): a figure layer or
+/// a claim naming a column that does not exist fails here, before any work, at the line
+/// that names it. A read without a stage (a title's placeholder) must be a column of one of
+/// the stages the reader needs.
+fn check_columns_read(cx: &mut Ctx, stages: &[ParsedStage], registry: &Registry) {
+    let kind_of = |name: &str| {
+        let stage = stages.iter().find(|s| s.stage.name == name)?;
+        registry.get(&stage.stage.kind).map(|k| (name.to_string(), stage.stage.kind.clone(), k))
+    };
+    for s in stages {
+        for (read, location) in &s.column_reads {
+            let candidates: Vec<&String> = match &read.stage {
+                Some(stage) => vec![stage],
+                None => s.stage.needs.iter().collect(),
+            };
+            let kinds: Vec<_> = candidates.iter().filter_map(|c| kind_of(c)).collect();
+            let open = kinds.iter().any(|(_, _, k)| k.open_columns() || k.columns().is_empty());
+            if kinds.is_empty() || open || kinds.iter().any(|(_, _, k)| k.columns().contains(&read.column.as_str())) {
+                continue;
+            }
+            let mut declared: Vec<&str> = kinds.iter().flat_map(|(_, _, k)| k.columns().iter().copied()).collect();
+            declared.sort_unstable();
+            declared.dedup();
+            let hint =
+                suggestion(&read.column, &declared).map(|c| format!(" (did you mean `{c}`?)")).unwrap_or_default();
+            let of = kinds.iter().map(|(n, k, _)| format!("`{n}` ({k})")).collect::<Vec<_>>().join(" or ");
+            cx.err(
+                location.clone(),
+                format!(
+                    "stage `{}`: `{}` reads column `{}`, which {of} does not have{hint}; its columns: {}",
+                    s.stage.name,
+                    read.path,
+                    read.column,
+                    declared.join(", ")
+                ),
+            );
+        }
+    }
 }
 
 /// A stage's `needs`: the stage names (a matched entry's too), where each is, and the

@@ -449,8 +449,8 @@ def run(
     *,
     set: Optional[Mapping[str, Any]] = None,
     cache: Union[str, os.PathLike, None] = None,
-    figures: Union[str, os.PathLike] = "figures",
-    tables: Union[str, os.PathLike] = "tables",
+    figures: Union[str, os.PathLike, None] = None,
+    tables: Union[str, os.PathLike, None] = None,
     jobs: Optional[int] = None,
     force: Sequence[str] = (),
     dry_run: bool = False,
@@ -458,11 +458,14 @@ def run(
     backend: str = "pandas",
     raise_on_failure: bool = True,
     wait: bool = True,
+    publish: bool = False,
 ) -> Run:
     """Runs a pipeline file as ``repro run`` does: its ``targets`` (every stage if none)
     and what they need, computing only what ``cache`` lacks, publishing into ``figures``
-    and ``tables``. ``set`` maps ``"stage.param"`` to a value, as ``-S stage.param=value``
-    (the value a number, list, dict, or a YAML string).
+    and ``tables`` (default ``figures/`` and ``tables/``). ``set`` maps ``"stage.param"``
+    to a value, as ``-S stage.param=value`` (the value a number, list, dict, or a YAML
+    string); a run with ``set`` publishes into ``overrides/<pipeline>/<settings>/`` unless
+    ``publish`` is true or ``figures``/``tables`` say where.
 
     Returns a :class:`Run`. Raises :class:`InvalidPipeline` (with each error's file, line
     and column) or :class:`UsageError` before any work; :class:`TaskFailed` (with the
@@ -479,14 +482,15 @@ def run(
             list(targets or []),
             overrides,
             _default_cache(cache),
-            os.fspath(figures),
-            os.fspath(tables),
+            None if figures is None else os.fspath(figures),
+            None if tables is None else os.fspath(tables),
             jobs,
             bar.native,
             dry_run,
             list(force),
             bar.callback(),
             wait,
+            publish,
         )
     finally:
         bar.close()

@@ -76,7 +76,7 @@ class Run:
 
 def kinds() -> List[str]: ...
 def describe(kind: str) -> KindDescription: ...
-def run(pipeline: Union[str, os.PathLike], targets: Optional[Sequence[str]] = None, *, set: Optional[Mapping[str, Any]] = None, cache: Union[str, os.PathLike, None] = None, figures: Union[str, os.PathLike] = 'figures', tables: Union[str, os.PathLike] = 'tables', jobs: Optional[int] = None, force: Sequence[str] = (), dry_run: bool = False, progress: Optional[bool] = None, backend: str = 'pandas', raise_on_failure: bool = True, wait: bool = True) -> Run: ...
+def run(pipeline: Union[str, os.PathLike], targets: Optional[Sequence[str]] = None, *, set: Optional[Mapping[str, Any]] = None, cache: Union[str, os.PathLike, None] = None, figures: Union[str, os.PathLike, None] = None, tables: Union[str, os.PathLike, None] = None, jobs: Optional[int] = None, force: Sequence[str] = (), dry_run: bool = False, progress: Optional[bool] = None, backend: str = 'pandas', raise_on_failure: bool = True, wait: bool = True, publish: bool = False) -> Run: ...
 
 Sweep = Union[float, Sequence[float], np.ndarray, Mapping[str, Any]]
 Path = Union[str, os.PathLike]
@@ -827,8 +827,10 @@ def point(
             p h/(penalty E).
         shell (ShellParams; required): The shell and its mesh, as for `fem.mesh`.
         snap (SnapCriterion; default None): What counts as the snap-through: `instability` (default, the
-            stability test) or the thesis' staggered procedure, `{thesis: {passes: n, first_pass: ...}}`
-            (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no loop).
+            stability test), `energy` (the inverted state stores less total potential energy; the whole
+            cycle, `fem::cycle::energy`) or the thesis' staggered procedure, `{thesis: {passes: n,
+            first_pass: ...}}` (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no
+            loop).
         stability (Stability; default None): Stability test: `lift_threshold` (default) or `tangent`
             (`shell::Stability`).
         steps (integer; required, 1..=100000): Equal load steps to delta_max (and back).
@@ -2238,8 +2240,10 @@ def sweep(
             p h/(penalty E).
         shell (ShellParams; required): The shell and its mesh, as for `fem.mesh`.
         snap (SnapCriterion; default None): What counts as the snap-through: `instability` (default, the
-            stability test) or the thesis' staggered procedure, `{thesis: {passes: n, first_pass: ...}}`
-            (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no loop).
+            stability test), `energy` (the inverted state stores less total potential energy; the whole
+            cycle, `fem::cycle::energy`) or the thesis' staggered procedure, `{thesis: {passes: n,
+            first_pass: ...}}` (`map::SnapCriterion`), which runs the loading leg only (W is then 0: no
+            loop).
         stability (Stability; default None): Stability test: `lift_threshold` (default) or `tangent`
             (`shell::Stability`).
         steps (integer; required, 1..=100000): Equal load steps to delta_max (and back).
