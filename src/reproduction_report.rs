@@ -84,6 +84,13 @@ fn read_claims(path: &Path) -> Result<Vec<ClaimRow>> {
 }
 
 /// Text for HTML.
+/// The text of an SVG's `<title>` element, unescaped.
+fn svg_title(svg: &str) -> Option<String> {
+    let start = svg.find("<title>")? + "<title>".len();
+    let end = start + svg[start..].find("</title>")?;
+    Some(svg[start..end].replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&"))
+}
+
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
@@ -298,6 +305,9 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
                 Some(i) => &svg[i..],
                 None => svg,
             };
+            // The title as drawn (its `{column}`s filled in), else as written.
+            let drawn = svg_title(svg);
+            let title = drawn.as_deref().unwrap_or(title);
             let up = ancestors(p, &f.name);
             let bearing: Vec<&ClaimRow> = claims.iter().filter(|c| up.contains(&c.stage)).collect();
             let key = figure_key(&src.figures_dir, &f.name).unwrap_or_else(|| "(not published)".into());

@@ -28,11 +28,11 @@ stages:
     kind: figure
     needs: [pulloff]
     params:
-      title: "A check of our own"
+      title: "A check of our own at λ = {lambda}"
       x_label: "λ"
       y_label: "P"
       layers:
-        - data: {from: pulloff, x: lambda, y: P_bar_pulloff, label: "Maugis"}
+        - data: {from: pulloff, x: lambda, y: P_bar_pulloff, label: "Maugis", filter: {lambda: 1}}
 
   - name: c_jkr
     kind: claim
@@ -88,6 +88,8 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     let extra = html.find("id=\"figure-extra\"").unwrap();
     assert!(ch2 < fig && fig < other && other < extra);
     assert!(html[fig..extra].contains("<svg") && html[fig..extra].contains("claim-jkr"));
+    // A caption reads the title as drawn, its `{column}` filled in.
+    assert!(html[extra..].contains("<b>A check of our own at λ = 1</b>"), "{}", &html[extra..extra + 400]);
     assert!(html[fig..extra].contains("computed from pulloff (theory.maugis_pulloff@v2)"));
     let key_at = html[fig..extra].find("task key <code>").unwrap() + fig + "task key <code>".len();
     assert!(html[key_at..key_at + 64].bytes().all(|b| b.is_ascii_hexdigit()), "the figure's task key");

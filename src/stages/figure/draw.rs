@@ -95,10 +95,18 @@ pub(super) fn extent(given: Option<[f64; 2]>, log: bool, values: impl Iterator<I
 /// inside the axes is drawn outside them, on the right.
 pub(super) fn render(p: &FigureParams, series: &[Series]) -> Result<String> {
     let (svg, covered) = draw(p, series, false)?;
-    if covered == 0 || p.legend != LegendPosition::Auto {
-        return Ok(svg);
+    let svg = if covered == 0 || p.legend != LegendPosition::Auto { svg } else { draw(p, series, true)?.0 };
+    Ok(with_title_element(&svg, &p.title))
+}
+
+/// The SVG with a `<title>` element (its accessible name, and what the report's caption
+/// reads) holding the figure's title as drawn, right after the opening `<svg>` tag.
+fn with_title_element(svg: &str, title: &str) -> String {
+    let escaped = title.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
+    match svg.find("<svg").and_then(|i| svg[i..].find('>').map(|j| i + j + 1)) {
+        Some(at) => format!("{}\n<title>{escaped}</title>{}", &svg[..at], &svg[at..]),
+        None => svg.to_string(),
     }
-    Ok(draw(p, series, true)?.0)
 }
 
 /// The title's lines: words wrapped so that each line fits in `width` pixels at `font`.
