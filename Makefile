@@ -97,8 +97,9 @@ bench-gamma-c:
 # Chapter 3's stages (every fem.* stage of the thesis pipeline) from an empty cache, in the
 # profile `make figures` builds: the run's summary gives each stage's task time (docs/shell.md,
 # "Cost").
-CHAPTER3 = shell_mesh shell_indent shell_profile shell_indent_adhesive shell_gamma shell_mu \
-	buckling_vs_mu buckling_vs_gamma exp_rough exp_moderate exp_smooth imperfection_apex \
+CHAPTER3 = shell_mesh shell_indent shell_profile shell_indent_adhesive shell_indent_adhesive_energy \
+	shell_gamma shell_mu buckling_vs_mu buckling_vs_gamma exp_rough exp_moderate exp_smooth \
+	exp_rough_energy exp_moderate_energy exp_smooth_energy imperfection_apex \
 	imperfection_dimple imperfection_perfect shell_material shell_material_svk shell_material_hencky \
 	gamma_c buckling_limit gamma_c_map
 bench-chapter3: build
