@@ -54,7 +54,18 @@ const seen = await page.evaluate(() => {
     (tr) => !tr.closest("figure"),
   ).length;
   const verdict = document.querySelector("#verdict")?.textContent ?? "";
-  return { figures, claims, verdict };
+  // Every id once; every claim row says what it compared; claims in the thesis' order.
+  const ids = [...document.querySelectorAll("[id]")].map((e) => e.id);
+  const duplicates = ids.filter((id, i) => ids.indexOf(id) !== i);
+  const rows = [...document.querySelectorAll("table.claims tr[id^='claim-']")].filter((tr) => !tr.closest("figure"));
+  const withoutQuantity = rows.filter((tr) => !(tr.cells[3]?.textContent ?? "").includes(" of ")).map((tr) => tr.id);
+  const chapter = (id) => {
+    const p = id.slice(6).split(".")[0];
+    return p === "appA" ? 7 : Number(p.replace("ch", "")) || 99;
+  };
+  const order = rows.map((tr) => chapter(tr.id));
+  const outOfOrder = order.some((c, i) => i > 0 && c < order[i - 1]);
+  return { figures, claims, verdict, duplicates, withoutQuantity, outOfOrder };
 });
 if (screenshot) await page.screenshot({ path: screenshot });
 await browser.close();
@@ -70,11 +81,15 @@ for (const f of figures) {
 const claims = stages("claim");
 if (seen.claims !== claims.length) failures.push(`claims table: ${seen.claims} rows for ${claims.length} claim stages`);
 if (!/thesis claims reproduced/.test(seen.verdict)) failures.push(`verdict line: ${JSON.stringify(seen.verdict)}`);
+if (seen.duplicates.length) failures.push(`ids given twice: ${[...new Set(seen.duplicates)].slice(0, 5).join(", ")}`);
+if (seen.withoutQuantity.length) failures.push(`claims without the quantity compared: ${seen.withoutQuantity.slice(0, 5).join(", ")}`);
+if (seen.outOfOrder) failures.push("claims not in the thesis' chapter order");
 const left = requests.filter((u) => u !== url);
 if (left.length) failures.push(`requests left the page: ${left.slice(0, 5).join(", ")}`);
 console.log(
   `report_check: ${Object.keys(seen.figures).length} figures rendered (pipeline: ${figures.length}), ` +
-    `${seen.claims} claims (pipeline: ${claims.length}), ${left.length} request(s) beyond the page; ${seen.verdict}`,
+    `${seen.claims} claims (pipeline: ${claims.length}), ${left.length} request(s) beyond the page, ` +
+    `${seen.duplicates.length} repeated id(s); ${seen.verdict}`,
 );
 for (const f of failures) console.log("FAIL " + f);
 process.exit(failures.length ? 1 : 0);

@@ -14,6 +14,7 @@
 use crate::pipeline::cache::read_regular;
 use crate::pipeline::report::{RunReport, Status};
 use crate::pipeline::spec::Pipeline;
+use crate::stages::claim::ClaimParams;
 use anyhow::{Context, Result};
 use polars::prelude::{DataFrame, DataType};
 use std::collections::{BTreeMap, BTreeSet};
@@ -44,6 +45,61 @@ struct ClaimRow {
     expected: String,
     reason: String,
     docs: String,
+    /// What is compared (`claim::Quantity::describe`).
+    quantity: String,
+}
+
+/// The verdict of a claim that the run did not evaluate.
+const NOT_RUN: &str = "not run";
+
+/// The chapter of a claim id ("ch3.k_7_5" -> 3; Appendix A after Chapter 5), for the
+/// thesis' order.
+fn claim_chapter(id: &str) -> u32 {
+    match id.split('.').next().unwrap_or("") {
+        "appA" => 7,
+        ch => ch.strip_prefix("ch").and_then(|n| n.parse().ok()).unwrap_or(99),
+    }
+}
+
+/// Every claim of the pipeline, in the thesis' order (by chapter, then as the file lists
+/// them): its row of the claims table where the run evaluated it, else a row `not run`
+/// built from its parameters.
+fn pipeline_claims(p: &Pipeline, table: Vec<ClaimRow>) -> Vec<ClaimRow> {
+    let mut rows: Vec<ClaimRow> = p
+        .stages
+        .iter()
+        .filter(|st| st.kind == "claim")
+        .filter_map(|st| serde_json::from_value::<ClaimParams>(st.points.first()?.params.clone()).ok())
+        .map(|c| {
+            let quantity = c.quantity.describe();
+            match table.iter().find(|r| r.id == c.id) {
+                Some(r) => ClaimRow { quantity, ..r.clone() },
+                None => ClaimRow {
+                    id: c.id.clone(),
+                    source: c.source.clone(),
+                    statement: c.statement.clone(),
+                    stage: c.quantity.from.clone(),
+                    aggregate: serde_json::to_value(c.quantity.aggregate)
+                        .ok()
+                        .and_then(|v| v.as_str().map(str::to_string))
+                        .unwrap_or_default(),
+                    value: f64::NAN,
+                    thesis: c.thesis.describe(),
+                    independent: None,
+                    verdict: NOT_RUN.into(),
+                    expected: serde_json::to_value(c.expect)
+                        .ok()
+                        .and_then(|v| v.as_str().map(str::to_string))
+                        .unwrap_or_default(),
+                    reason: c.reason.clone(),
+                    docs: c.docs.clone(),
+                    quantity,
+                },
+            }
+        })
+        .collect();
+    rows.sort_by_key(|r| claim_chapter(&r.id));
+    rows
 }
 
 fn strings(df: &DataFrame, name: &str) -> Result<Vec<String>> {
@@ -79,11 +135,11 @@ fn read_claims(path: &Path) -> Result<Vec<ClaimRow>> {
             expected: expected[i].clone(),
             reason: reason[i].clone(),
             docs: docs[i].clone(),
+            quantity: String::new(),
         })
         .collect())
 }
 
-/// Text for HTML.
 /// The text of an SVG's `<title>` element, unescaped.
 fn svg_title(svg: &str) -> Option<String> {
     let start = svg.find("<title>")? + "<title>".len();
@@ -91,6 +147,7 @@ fn svg_title(svg: &str) -> Option<String> {
     Some(svg[start..end].replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&"))
 }
 
+/// Text for HTML.
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
@@ -131,6 +188,17 @@ fn chapter_of(title: &str) -> String {
     }
 }
 
+/// A figure's place in its chapter from its title: "Fig. 3.5 (b)" and "Fig. 3.5b" -> (5, "b");
+/// no number: last.
+fn figure_number(title: &str) -> (u32, String) {
+    let Some(rest) = title.strip_prefix("Fig. ") else { return (u32::MAX, String::new()) };
+    let rest = rest.trim_start_matches(|c: char| c.is_ascii_digit()).strip_prefix('.').unwrap_or("");
+    let number: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    let letter: String =
+        rest[number.len()..].trim_start_matches([' ', '(']).chars().take_while(|c| c.is_ascii_lowercase()).collect();
+    (number.parse().unwrap_or(u32::MAX), letter)
+}
+
 fn chapter_heading(ch: &str) -> &'static str {
     match ch {
         "2" => "Chapter 2: adhesion theories (JKR, DMT, Maugis)",
@@ -164,9 +232,12 @@ table{border-collapse:collapse;font-size:.85em;margin:.5em 0}td,th{border:1px so
 th{background:#f4f4f4}.reproduced{color:#176b2c;font-weight:600}.differs{color:#9a5b00;font-weight:600}.calibrated{color:#555;font-weight:600}\
 .regressed{color:#b00020;font-weight:700}figure{margin:1.5em 0;border:1px solid #eee;padding:.5em}\
 figure svg{max-width:100%;height:auto}figcaption{font-size:.9em;color:#444}.summary{font-size:1.2em;padding:.6em;background:#f6f8fa}\
-.small{font-size:.8em;color:#555}nav a{margin-right:1em}";
+.small{font-size:.8em;color:#555}nav a{margin-right:1em}.notrun{color:#777;font-style:italic}";
 
 fn verdict_cell(c: &ClaimRow) -> String {
+    if c.verdict == NOT_RUN {
+        return format!("<td class=\"notrun\">{NOT_RUN}</td>");
+    }
     let class = if c.verdict == "reproduced" || c.verdict == "calibrated" {
         if c.verdict == "calibrated" {
             "calibrated"
@@ -182,19 +253,31 @@ fn verdict_cell(c: &ClaimRow) -> String {
     format!("<td class=\"{class}\">{label}</td>")
 }
 
-/// The measured value: a number, or for a monotonicity claim whether it holds.
-fn shown_value(c: &ClaimRow) -> String {
-    match c.aggregate.as_str() {
-        "increasing" | "decreasing" => {
-            format!("{} ({})", if c.value == 1.0 { "yes" } else { "no" }, c.aggregate)
-        }
-        _ => number(c.value),
-    }
+/// A monotonicity claim's 1 or 0 as yes or no, on both sides of the comparison.
+fn yes_no(c: &ClaimRow, x: f64) -> Option<String> {
+    matches!(c.aggregate.as_str(), "increasing" | "decreasing")
+        .then(|| format!("{} ({})", if x == 1.0 { "yes" } else { "no" }, c.aggregate))
 }
 
-fn claims_table(claims: &[&ClaimRow]) -> String {
+/// The measured value: a number, or for a monotonicity claim whether it holds; nothing
+/// for a claim not run.
+fn shown_value(c: &ClaimRow) -> String {
+    if c.verdict == NOT_RUN {
+        return String::new();
+    }
+    yes_no(c, c.value).unwrap_or_else(|| number(c.value))
+}
+
+/// The thesis' side, read as the measured side is.
+fn shown_thesis(c: &ClaimRow) -> String {
+    c.thesis.parse::<f64>().ok().and_then(|x| yes_no(c, x)).unwrap_or_else(|| esc(&c.thesis))
+}
+
+/// The claims as a table; `ids`: the rows carry the claims' ids (the page's one table of
+/// every claim; the tables under the figures repeat rows without them, so ids stay unique).
+fn claims_table(claims: &[&ClaimRow], ids: bool) -> String {
     let mut s = String::from(
-        "<table class=\"claims\"><tr><th>claim</th><th>where</th><th>statement</th><th>thesis</th><th>repro</th>\
+        "<table class=\"claims\"><tr><th>claim</th><th>where</th><th>statement</th><th>quantity compared</th><th>thesis</th><th>repro</th>\
          <th>independent</th><th>verdict</th><th>why it differs</th></tr>\n",
     );
     for c in claims {
@@ -207,12 +290,14 @@ fn claims_table(claims: &[&ClaimRow]) -> String {
         } else {
             format!("{} <span class=\"small\">({})</span>", esc(&c.reason), esc(&c.docs))
         };
+        let row_id = if ids { format!(" id=\"claim-{}\"", esc(&c.id)) } else { String::new() };
         let _ = writeln!(
             s,
-            "<tr id=\"claim-{id}\"><td><code>{id}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{independent}</td>{}<td>{why}</td></tr>",
+            "<tr{row_id}><td><code>{id}</code></td><td>{}</td><td>{}</td><td class=\"small\">{}</td><td>{}</td><td>{}</td><td>{independent}</td>{}<td>{why}</td></tr>",
             esc(&c.source),
             esc(&c.statement),
-            esc(&c.thesis),
+            esc(&c.quantity),
+            shown_thesis(c),
             shown_value(c),
             verdict_cell(c),
             id = esc(&c.id),
@@ -225,14 +310,30 @@ fn claims_table(claims: &[&ClaimRow]) -> String {
 /// Writes the report; returns the number of figures and claims it shows.
 pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources, out: &Path) -> Result<(usize, usize)> {
     let claims_stage = p.stages.iter().find(|s| s.kind == "claims").map(|s| s.name.clone());
-    let claims: Vec<ClaimRow> = match &claims_stage {
+    // The claims table of the last run that evaluated the claims; after a run of some
+    // targets only, the claims it did not reach are `not run`.
+    let table: Vec<ClaimRow> = match &claims_stage {
         Some(name) => {
             let path = src.tables_dir.join(format!("{name}.parquet"));
-            read_claims(&path)
-                .with_context(|| format!("reading the claims table {} (run the pipeline first)", path.display()))?
+            if path.exists() {
+                read_claims(&path).with_context(|| format!("reading the claims table {}", path.display()))?
+            } else {
+                Vec::new()
+            }
         }
         None => Vec::new(),
     };
+    let any_figure =
+        p.stages.iter().any(|s| s.kind == "figure" && src.figures_dir.join(format!("{}.svg", s.name)).exists());
+    if table.is_empty() && !any_figure {
+        anyhow::bail!(
+            "no figure of {} in {} and no claims table in {} (run the pipeline first)",
+            src.pipeline_file.display(),
+            src.figures_dir.display(),
+            src.tables_dir.display()
+        );
+    }
+    let claims = pipeline_claims(p, table);
     let run: Option<RunReport> = match &src.run_report {
         Some(path) if path.exists() => {
             Some(serde_json::from_slice(&read_regular(path)?).with_context(|| format!("reading {}", path.display()))?)
@@ -258,12 +359,18 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     let reproduced = claims.iter().filter(|c| c.verdict == "reproduced").count();
     let calibrated = claims.iter().filter(|c| c.verdict == "calibrated").count();
     let explained = claims.iter().filter(|c| c.verdict == "differs" && c.expected == "differs").count();
-    let regressed = n - reproduced - calibrated - explained;
+    let not_run = claims.iter().filter(|c| c.verdict == NOT_RUN).count();
+    let regressed = n - reproduced - calibrated - explained - not_run;
     let figures: Vec<_> = p.stages.iter().filter(|s| s.kind == "figure").collect();
     let mut chapters: BTreeMap<String, Vec<_>> = BTreeMap::new();
     for f in &figures {
         let title = f.points.first().and_then(|pt| pt.params["title"].as_str()).unwrap_or(&f.name).to_string();
         chapters.entry(chapter_of(&title)).or_default().push((f, title));
+    }
+    // In the thesis' order within each chapter (3.2 before 3.3a), figures without a number
+    // after those with one, as the file lists them.
+    for list in chapters.values_mut() {
+        list.sort_by_key(|(_, title)| figure_number(title));
     }
     let order = ["2", "3", "4", "5", "7", "other"];
     h.push_str("<nav>");
@@ -284,12 +391,13 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     h.push_str("<a href=\"#cost\">Cost</a><a href=\"#graph\">Stages</a><a href=\"#provenance\">Provenance</a></nav>\n");
     let _ = writeln!(
         h,
-        "<p class=\"summary\" id=\"verdict\">{reproduced} of {n} thesis claims reproduced, {}{explained} differ (explained){}.</p>",
+        "<p class=\"summary\" id=\"verdict\">{reproduced} of {n} thesis claims reproduced, {}{explained} differ (explained){}{}.</p>",
         if calibrated > 0 { format!("{calibrated} calibrated (the model tuned to them), ") } else { String::new() },
-        if regressed > 0 { format!(", <span class=\"regressed\">{regressed} regressed</span>") } else { String::new() }
+        if regressed > 0 { format!(", <span class=\"regressed\">{regressed} regressed</span>") } else { String::new() },
+        if not_run > 0 { format!(", {not_run} not run (the last run did not reach them)") } else { String::new() }
     );
     h.push_str("<h2 id=\"claims\">The thesis' claims</h2>\n<p>Each claim is a stage of the pipeline that reads a published table; the verdict compares the quantity with the thesis' value and the tolerance its text implies. A claim that differs carries its reason.</p>\n");
-    h.push_str(&claims_table(&claims.iter().collect::<Vec<_>>()));
+    h.push_str(&claims_table(&claims.iter().collect::<Vec<_>>(), true));
 
     // Chapters.
     let mut shown = 0;
@@ -297,9 +405,18 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
         let _ = writeln!(h, "<h2 id=\"chapter-{ch}\">{}</h2>", chapter_heading(ch));
         for (f, title) in &chapters[*ch] {
             let svg_path = src.figures_dir.join(format!("{}.svg", f.name));
+            if !svg_path.exists() {
+                let _ = writeln!(
+                    h,
+                    "<figure id=\"figure-{name}\"><figcaption><b>{}</b><br><span class=\"small notrun\">not produced: the last run did not reach it (<code>repro run --target {name}</code>)</span></figcaption></figure>",
+                    esc(title),
+                    name = esc(&f.name),
+                );
+                continue;
+            }
             let svg = read_regular(&svg_path)
                 .map(|b| String::from_utf8_lossy(&b).into_owned())
-                .with_context(|| format!("reading {} (run the pipeline first)", svg_path.display()))?;
+                .with_context(|| format!("reading {}", svg_path.display()))?;
             let svg = svg.trim_start_matches(|c| c != '<');
             let svg = match svg.find("<svg") {
                 Some(i) => &svg[i..],
@@ -327,7 +444,7 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
                 name = esc(&f.name),
             );
             if !bearing.is_empty() {
-                h.push_str(&claims_table(&bearing));
+                h.push_str(&claims_table(&bearing, false));
             }
             h.push_str("</figure>\n");
             shown += 1;

@@ -87,7 +87,7 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     let fig = html.find("id=\"figure-fig2_x\"").unwrap();
     let extra = html.find("id=\"figure-extra\"").unwrap();
     assert!(ch2 < fig && fig < other && other < extra);
-    assert!(html[fig..extra].contains("<svg") && html[fig..extra].contains("claim-jkr"));
+    assert!(html[fig..extra].contains("<svg") && html[fig..extra].contains("<code>jkr</code>"));
     // A caption reads the title as drawn, its `{column}` filled in.
     assert!(html[extra..].contains("<b>A check of our own at λ = 1</b>"), "{}", &html[extra..extra + 400]);
     assert!(html[fig..extra].contains("computed from pulloff (theory.maugis_pulloff@v2)"));
@@ -95,7 +95,11 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     assert!(html[key_at..key_at + 64].bytes().all(|b| b.is_ascii_hexdigit()), "the figure's task key");
     // Text is escaped, the claims table has one row per claim (and again under the figures).
     assert!(html.contains("JKR limit &lt;at large λ&gt;"));
-    assert_eq!(html.matches("<tr id=\"claim-dmt\">").count(), 3);
+    // Ids are unique: the rows repeated under the figures carry none.
+    assert_eq!(html.matches("<tr id=\"claim-dmt\">").count(), 1);
+    assert_eq!(html.matches("<code>dmt</code>").count(), 3);
+    // Each claim says what it compared.
+    assert!(html.contains("value of pulloff.P_bar_pulloff against lambda for lambda in [-∞, 0.11]"), "the quantity");
     assert!(html.contains("class=\"differs\">differs</td>") && html.contains("not yet the limit"));
     // The last run computed everything: its timeline has a bar per computed task.
     assert!(html.contains("class=\"timeline\""));
@@ -106,6 +110,30 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     let graph = &graph[..graph.find("</svg>").unwrap()];
     assert_eq!(graph.matches("<rect ").count(), 3, "pulloff, fig2_x, extra");
     assert_eq!(graph.matches("<line ").count(), 2);
+}
+
+#[test]
+fn the_report_of_a_partial_run_marks_what_it_did_not_reach() {
+    // A run of one figure: the report still shows it, and says which figure and which
+    // claims the run did not reach, instead of refusing.
+    let s = Scratch::new("report-partial");
+    s.write("p.yaml", PIPELINE);
+    let (code, err, _) = s.run("p.yaml", &["--target", "fig2_x"]);
+    assert_eq!(code, 0, "{err}");
+    let out = s.repro(&["report", "p.yaml", "--out", "rep/index.html"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let html = std::fs::read_to_string(s.path("rep/index.html")).unwrap();
+    assert!(html.contains(
+        "0 of 2 thesis claims reproduced, 0 differ (explained), 2 not run (the last run did not reach them)"
+    ));
+    assert_eq!(
+        html.matches("class=\"notrun\">not run</td>").count(),
+        2 + 2,
+        "both claims, in the table and under fig2_x"
+    );
+    let extra = html.find("id=\"figure-extra\"").unwrap();
+    assert!(html[extra..].contains("not produced: the last run did not reach it"));
+    assert!(html[html.find("id=\"figure-fig2_x\"").unwrap()..extra].contains("<svg"));
 }
 
 #[test]

@@ -81,6 +81,36 @@ pub struct Quantity {
     pub aggregate: Aggregate,
 }
 
+impl Quantity {
+    /// What is compared, in words: "value of `stage.y` where a = 1, b = 2", "argmax of
+    /// `stage.y` against `x` for x in [1, 10]".
+    pub fn describe(&self) -> String {
+        let aggregate = serde_json::to_value(self.aggregate).ok().and_then(|v| v.as_str().map(str::to_string));
+        let mut s = format!("{} of {}.{}", aggregate.unwrap_or_default(), self.from, self.y);
+        if let Some(x) = &self.x {
+            s.push_str(&format!(" against {x}"));
+        }
+        if !self.filter.is_empty() {
+            let kept: Vec<String> = self
+                .filter
+                .iter()
+                .map(|(k, v)| match v {
+                    FilterValue::Number(n) => format!("{k} = {}", format_number(*n)),
+                    FilterValue::Text(t) => format!("{k} = {t}"),
+                })
+                .collect();
+            s.push_str(&format!(" where {}", kept.join(", ")));
+        }
+        if self.x_min.is_some() || self.x_max.is_some() {
+            let x = self.x.as_deref().unwrap_or("x");
+            let (lo, hi) =
+                (self.x_min.map_or("-∞".into(), format_number), self.x_max.map_or("∞".into(), format_number));
+            s.push_str(&format!(" for {x} in [{lo}, {hi}]"));
+        }
+        s
+    }
+}
+
 /// The value a filtered column must equal.
 #[derive(Serialize, Deserialize, JsonSchema, Clone, Debug, PartialEq)]
 #[serde(untagged)]
@@ -118,7 +148,7 @@ impl Expected {
     }
 
     /// The condition in words, e.g. "-1.5 ± 2 %", "> 0", "in (0.3, 0.5)".
-    fn describe(&self) -> String {
+    pub fn describe(&self) -> String {
         let mut parts = Vec::new();
         if let Some(v) = self.value {
             parts.push(match (self.rel_tol, self.abs_tol) {
