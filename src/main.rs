@@ -438,11 +438,23 @@ fn report_command(args: cli::ReportArgs, registry: &Registry) -> Result<Exit, Cl
     let cli::ReportArgs { pipeline, cache, figures, tables, out } = args;
     let p = load(&pipeline, registry)?;
     let versions = registry.iter().map(|k| (k.name().to_string(), k.version())).collect();
+    // The cost and timeline of the run that produced these outputs: the latest recorded
+    // run of this pipeline file without settings (a run with `-S` publishes apart), not
+    // whatever ran last in the cache.
+    let same_file = |recorded: &str| {
+        let (a, b) = (std::path::Path::new(recorded), pipeline.as_path());
+        a == b || matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
+    };
+    let own_run = repro::pipeline::report::run_history(&cache.cache)
+        .into_iter()
+        .rev()
+        .find(|(_, r)| !r.dry_run && r.overrides.is_empty() && same_file(&r.pipeline))
+        .map(|(path, _)| path);
     let sources = repro::reproduction_report::Sources {
         pipeline_file: pipeline,
         figures_dir: figures,
         tables_dir: tables,
-        run_report: Some(cache.cache.join("runs").join("last.json")),
+        run_report: own_run,
     };
     let (figures, claims) = repro::reproduction_report::write(&p, &versions, &sources, &out)?;
     println!("wrote {} ({figures} figures, {claims} claims)", out.display());

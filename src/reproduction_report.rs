@@ -7,7 +7,8 @@
 //! whole (repro version, the pipeline file's hash, the git commit when there is one).
 //!
 //! It reads what a run leaves behind: the pipeline file, the published figures and
-//! `claims` table, and the run report `cache/runs/last.json`.
+//! `claims` table, and the record of the run that produced them (the latest run of the
+//! pipeline file without `-S` settings, from `cache/runs/`).
 //!
 //! One file: the page's sections share one model of the run.
 
@@ -26,7 +27,8 @@ pub struct Sources {
     pub pipeline_file: PathBuf,
     pub figures_dir: PathBuf,
     pub tables_dir: PathBuf,
-    /// The run report (`cache/runs/last.json`); absent: no cost or timeline section.
+    /// The record of the run whose cost and timeline the report shows (`cache/runs/run-*.json`);
+    /// absent: no cost or timeline section.
     pub run_report: Option<PathBuf>,
 }
 
@@ -469,14 +471,16 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
 /// per stage and the timeline.
 fn cost_section(run: Option<&RunReport>) -> String {
     let mut h = String::new();
-    h.push_str("<h2 id=\"cost\">Cost of the last run</h2>\n");
+    h.push_str("<h2 id=\"cost\">Cost of the run</h2>\n");
     match run {
-        None => h.push_str("<p>No run report found.</p>\n"),
+        None => h.push_str("<p>No recorded run of this pipeline file.</p>\n"),
         Some(r) => {
             let computed = r.count(Status::Computed);
             let _ = writeln!(
                 h,
-                "<p>{} tasks: {computed} computed, {} from the cache, {} failed; {:.1} s of wall time.</p>",
+                "<p>The latest run of <code>{}</code> without settings, started {}: {} tasks: {computed} computed, {} from the cache, {} failed; {:.1} s of wall time.</p>",
+                esc(&r.pipeline),
+                crate::pipeline::report::utc_time(r.started_unix_ms),
                 r.tasks.len(),
                 r.count(Status::Cached),
                 r.count(Status::Failed),

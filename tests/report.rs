@@ -73,6 +73,14 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     s.write("p.yaml", PIPELINE);
     let (code, err, _) = s.run("p.yaml", &[]);
     assert_eq!(code, 0, "{err}");
+    // Another pipeline file and a run with settings use the cache since: the report's cost
+    // is still that of p.yaml's run, which produced what it shows.
+    s.write(
+        "other.yaml",
+        "stages:\n  - name: lj\n    kind: theory.lennard_jones\n    params: {z_min: 0.9, z_max: 3.0, n: 7}\n",
+    );
+    assert_eq!(s.run("other.yaml", &[]).0, 0);
+    assert_eq!(s.run("p.yaml", &["-S", "fig2_x.y_label=Q"]).0, 0);
     let out = s.repro(&["report", "p.yaml", "--out", "rep/index.html"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -103,6 +111,9 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     assert!(html.contains("class=\"differs\">differs</td>") && html.contains("not yet the limit"));
     // The last run computed everything: its timeline has a bar per computed task.
     assert!(html.contains("class=\"timeline\""));
+    assert!(html.contains("The latest run of <code>p.yaml</code> without settings"), "the cost's run");
+    let cost = &html[html.find("id=\"cost\"").unwrap()..];
+    assert!(cost.contains(" computed, 0 from the cache"), "the cost of p.yaml's first run: {}", &cost[..400]);
     assert!(html.matches("<rect ").count() >= 3 + 2, "timeline bars");
     assert!(html.contains("blake3 ") && html.contains("git commit"));
     // The stage graph: a box per stage but the claims, a line per dependency.
