@@ -19,7 +19,8 @@ fn the_thesis_pipeline_makes_its_figures_and_the_values_hold() {
     s.write("pipelines/thesis.yaml", &yaml);
     // The closed-form figures and two Chapter 4 ones (the full Chapter 4 set takes about a
     // minute in a release build: `make figures`).
-    let figures = ["fig2_4", "fig2_5", "fig7_3", "fig7_4", "fig5_4", "fig_bem_vs_persson_large_load", "fig4_2b", "fig4_4"];
+    let figures =
+        ["fig2_4", "fig2_5", "fig7_3", "fig7_4", "fig5_4", "fig_bem_vs_persson_large_load", "fig4_2b", "fig4_4"];
     let tables = ["maugis_pulloff", "bem_max_large_load", "fit_pb_linear", "fit_pb_sqrt"];
     let targets: Vec<String> =
         figures.iter().chain(&tables).flat_map(|f| ["--target".to_string(), f.to_string()]).collect();

@@ -183,7 +183,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 15;
+    const VERSION: u32 = 16;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     const COLUMNS: &'static [&'static str] =
@@ -308,6 +308,9 @@ impl Kind for Figure {
                 s.errors.retain(|_| *k.next().unwrap());
             }
             s.points.retain(drawable);
+        }
+        for s in &mut series {
+            s.label = template::superscripts(&s.label);
         }
         let svg = render(&template::filled(p, inputs)?, &series)?;
         let rows = series.iter().flat_map(|s| s.points.iter().map(move |&(x, y)| (s, x, y)));

@@ -70,8 +70,10 @@ fn fill(text: &str, field: &str, p: &FigureParams, inputs: &Inputs) -> Result<St
 }
 
 /// The figure's parameters with its title and axis labels filled in (`fill`).
+/// Its exponents set as superscripts (`superscripts`).
 pub(super) fn filled(p: &FigureParams, inputs: &Inputs) -> Result<FigureParams> {
-    let [title, x_label, y_label] = text_fields(p).map(|(field, text)| fill(text, field, p, inputs));
+    let [title, x_label, y_label] =
+        text_fields(p).map(|(field, text)| fill(text, field, p, inputs).map(|t| superscripts(&t)));
     Ok(FigureParams { title: title?, x_label: x_label?, y_label: y_label?, ..p.clone() })
 }
 
@@ -85,5 +87,109 @@ mod tests {
         // Not names: left alone.
         assert!(placeholders("a {b c} {} {").is_empty());
         assert_eq!(placeholders("{a}{b}"), vec!["a", "b"]);
+    }
+}
+
+/// The exponents of `text` set as superscripts, as a paper prints them: `λ^1.28` -> `λ¹·²⁸`,
+/// `W^3/2` -> `W³ᐟ²`, `(π/16)^(1/3)` -> `(π/16)⁽¹ᐟ³⁾`, `(v/v0)^n` -> `(v/v0)ⁿ`. An exponent is a
+/// parenthesised group or a run of digits, `.`, `/`, signs and the letters n, s, i after a
+/// `^`; one with a character that has no superscript form keeps its caret.
+pub(super) fn superscripts(text: &str) -> String {
+    fn sup(c: char) -> Option<char> {
+        Some(match c {
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            '9' => '⁹',
+            '+' => '⁺',
+            '-' => '⁻',
+            '/' => 'ᐟ',
+            '.' => '·',
+            '(' => '⁽',
+            ')' => '⁾',
+            'n' => 'ⁿ',
+            's' => 'ˢ',
+            'i' => 'ⁱ',
+            _ => return None,
+        })
+    }
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < chars.len() {
+        if chars[i] != '^' || i + 1 == chars.len() {
+            out.push(chars[i]);
+            i += 1;
+            continue;
+        }
+        // The exponent: a balanced group, or a run of the characters above (but a sign or a
+        // point only where a digit follows, so that "x^2." ends a sentence).
+        let start = i + 1;
+        let end = if chars[start] == '(' {
+            let mut depth = 0;
+            let mut j = start;
+            loop {
+                match chars.get(j) {
+                    Some('(') => depth += 1,
+                    Some(')') => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break j + 1;
+                        }
+                    }
+                    Some(_) => {}
+                    None => break start,
+                }
+                j += 1;
+            }
+        } else {
+            let mut j = start;
+            while j < chars.len() && sup(chars[j]).is_some() && chars[j] != '(' && chars[j] != ')' {
+                let needs_digit = matches!(chars[j], '.' | '/' | '+' | '-');
+                if needs_digit && !chars.get(j + 1).is_some_and(|c| c.is_ascii_digit()) {
+                    break;
+                }
+                j += 1;
+            }
+            j
+        };
+        let exponent: Option<String> =
+            if end > start { chars[start..end].iter().map(|&c| sup(c)).collect() } else { None };
+        match exponent {
+            Some(e) => {
+                out.push_str(&e);
+                i = end;
+            }
+            None => {
+                out.push('^');
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod superscript_tests {
+    use super::superscripts;
+
+    #[test]
+    fn exponents_are_set_as_superscripts() {
+        assert_eq!(superscripts("fit λ^1.2823 ± 0.0123"), "fit λ¹·²⁸²³ ± 0.0123");
+        assert_eq!(superscripts("JKR limit √π / (2 W^3/2 k)"), "JKR limit √π / (2 W³ᐟ² k)");
+        assert_eq!(superscripts("-3 (π/16)^1/3"), "-3 (π/16)¹ᐟ³");
+        assert_eq!(superscripts("(K / (π w R²))^(1/3)"), "(K / (π w R²))⁽¹ᐟ³⁾");
+        assert_eq!(superscripts("G/Δγ fit (v/v0)^-0.5, s = 0.5"), "G/Δγ fit (v/v0)⁻⁰·⁵, s = 0.5");
+        assert_eq!(superscripts("(v/v0)^n"), "(v/v0)ⁿ");
+        // Nothing to set: the caret stays.
+        assert_eq!(superscripts("a^b and x^"), "a^b and x^");
+        assert_eq!(superscripts("up to x^2."), "up to x².");
+        assert_eq!(superscripts("no caret"), "no caret");
     }
 }
