@@ -1,7 +1,7 @@
 //! Drawing a figure with plotters (SVG): the axes (log axes as log10 values labelled in
 //! powers of ten), their extent, the title, the series with their error bars.
 
-use super::legend::{draw_legend, least_covering_legend, legend_corner, legend_size};
+use super::legend::{draw_legend, least_covering_legend, legend_corner, legend_size, Grid};
 use super::series::Series;
 use super::{FigureParams, LegendPosition, Style};
 use crate::pipeline::table::format_number;
@@ -159,6 +159,32 @@ fn visible_runs(
     runs
 }
 
+/// The drawn marks of the series (in plot coordinates, inside the axes) in pixels of the
+/// plotting area (`px`): points, lines sampled between them every 2 pixels or so (no line
+/// crosses a legend box unseen), and the shaded region under an area's line down to `y0`.
+fn drawn_marks(series: &[(Style, Vec<(f64, f64)>)], y0: f64, px: impl Fn((f64, f64)) -> (i32, i32)) -> Vec<(i32, i32)> {
+    let mut marks = Vec::new();
+    for (style, q) in series {
+        for (k, &a) in q.iter().enumerate() {
+            marks.push(px(a));
+            if *style == Style::Area {
+                marks.extend((1..=12).map(|j| px((a.0, a.1 - (a.1 - y0) * j as f64 / 12.0))));
+            }
+            if *style != Style::Points {
+                if let Some(&b) = q.get(k + 1) {
+                    let (pa, pb) = (px(a), px(b));
+                    let n = ((pb.0 - pa.0).abs().max((pb.1 - pa.1).abs()) / 2).clamp(1, 2000);
+                    marks.extend((1..n).map(|j| {
+                        let t = j as f64 / n as f64;
+                        px((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t))
+                    }));
+                }
+            }
+        }
+    }
+    marks
+}
+
 pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) -> Result<(String, usize)> {
     let tx = |x: f64| if p.log_x { x.log10() } else { x };
     let ty = |y: f64| if p.log_y { y.log10() } else { y };
@@ -178,9 +204,11 @@ pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) ->
         }
         let labels: Vec<&str> = series.iter().filter(|s| !s.label.is_empty()).map(|s| s.label.as_str()).collect();
         let (legend_w, _) = legend_size(&labels);
+        let below = (p.legend == LegendPosition::Below && !labels.is_empty()).then(|| Grid::of(&labels, p.width));
         let mut chart = ChartBuilder::on(&area)
             .margin(18)
             .margin_right(if legend_outside { 18 + legend_w as u32 + 10 } else { 18 })
+            .margin_bottom(18 + below.as_ref().map_or(0, |g| g.height))
             .x_label_area_size(52)
             .y_label_area_size(72)
             .build_cartesian_2d(x0..x1, y0..y1)
@@ -254,40 +282,20 @@ pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) ->
             LegendPosition::LowerLeft => pinned(SeriesLabelPosition::LowerLeft),
             LegendPosition::Auto if legend_outside => ((area.0 as i32 + 10, 0), 0),
             LegendPosition::Auto if labels.is_empty() => ((0, 0), 0),
+            LegendPosition::Below => ((0, 0), 0),
             LegendPosition::Auto => {
-                // The drawn marks in pixels of the plotting area: points, lines sampled
-                // between them, and the shaded region under an area's line.
                 let px = |q: (f64, f64)| {
                     let (x, y) = chart.backend_coord(&q);
                     (x - base.0, y - base.1)
                 };
-                let mut marks = Vec::new();
-                for s in series {
-                    let q: Vec<(f64, f64)> = s
-                        .points
-                        .iter()
-                        .map(|&(x, y)| (tx(x), ty(y)))
-                        .filter(|&(x, y)| x.is_finite() && y.is_finite() && x >= x0 && x <= x1 && y >= y0 && y <= y1)
-                        .collect();
-                    for (k, &a) in q.iter().enumerate() {
-                        marks.push(px(a));
-                        if s.style == Style::Area {
-                            marks.extend((1..=12).map(|j| px((a.0, a.1 - (a.1 - y0) * j as f64 / 12.0))));
-                        }
-                        if s.style != Style::Points {
-                            if let Some(&b) = q.get(k + 1) {
-                                // A sample every 2 pixels or so: no line crosses the box unseen.
-                                let (pa, pb) = (px(a), px(b));
-                                let n = ((pb.0 - pa.0).abs().max((pb.1 - pa.1).abs()) / 2).clamp(1, 2000);
-                                marks.extend((1..n).map(|j| {
-                                    let t = j as f64 / n as f64;
-                                    px((a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t))
-                                }));
-                            }
-                        }
-                    }
-                }
-                let (best, covered) = least_covering_legend(&labels, area, &marks);
+                let shown: Vec<(Style, Vec<(f64, f64)>)> = series
+                    .iter()
+                    .map(|s| {
+                        let q = s.points.iter().map(|&(x, y)| (tx(x), ty(y)));
+                        (s.style, q.filter(|&(x, y)| x >= x0 && x <= x1 && y >= y0 && y <= y1).collect())
+                    })
+                    .collect();
+                let (best, covered) = least_covering_legend(&labels, area, &drawn_marks(&shown, y0, px));
                 (legend_corner(&best, legend_size(&labels), area), covered)
             }
         };
@@ -297,7 +305,10 @@ pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) ->
             .filter(|(_, s)| !s.label.is_empty())
             .map(|(i, s)| (s.label.as_str(), s.style, PALETTE[s.color.unwrap_or(i) % PALETTE.len()]))
             .collect();
-        draw_legend(&root, &entries, (base.0 + corner.0, base.1 + corner.1))?;
+        match below {
+            Some(grid) => grid.draw(&root, &entries, p.height)?,
+            None => draw_legend(&root, &entries, (base.0 + corner.0, base.1 + corner.1))?,
+        }
         root.present().map_err(|e| anyhow::anyhow!("{e:?}"))?;
         covered
     };

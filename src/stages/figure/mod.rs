@@ -44,6 +44,9 @@ pub enum LegendPosition {
     /// inside covers some (the default).
     #[default]
     Auto,
+    /// Below the axes, in as many columns as the width holds: the axes keep the figure's
+    /// width (a long legend).
+    Below,
 }
 
 /// Curves from a stage's table.
@@ -183,7 +186,7 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 16;
+    const VERSION: u32 = 17;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     const COLUMNS: &'static [&'static str] =

@@ -185,6 +185,60 @@ fn a_legend_that_covers_data_everywhere_inside_goes_outside_the_axes() {
 }
 
 #[test]
+fn a_legend_below_leaves_the_axes_the_figure_width_and_sits_under_them() {
+    // Ten labels below a 400 x 300 figure: the data's lines span the axes' whole width
+    // (the legend takes none of it), and every label is drawn under the x axis, in two
+    // columns or more.
+    let x: Vec<f64> = (0..10).flat_map(|_| [0.0, 1.0]).collect();
+    let y: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
+    let g: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
+    let t = Table::new().with_f64("x", x).with_f64("a", y).with_f64("g", g);
+    let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+    let mut l = layer("a", None);
+    l.label = "c{g}".into();
+    let mut fig = test_figure(vec![Layer::Data(l)]);
+    fig.legend = LegendPosition::Below;
+    let Layer::Data(d) = &fig.layers[0] else { unreachable!() };
+    let series = data_series(d, &inputs).unwrap();
+    let svg = render(&fig, &series).unwrap();
+    let attr = |tag: &str, name: &str| -> f64 {
+        let v = tag.split(&format!("{name}=\"")).nth(1).unwrap();
+        v[..v.find('"').unwrap()].parse().unwrap()
+    };
+    let label_at = |label: &str| -> (f64, f64) {
+        let at = svg.find(&format!(">\n{label}\n<")).expect("label drawn");
+        let tag = &svg[svg[..at].rfind("<text").unwrap()..at];
+        (attr(tag, "x"), attr(tag, "y"))
+    };
+    // The data: polylines with two points at the same height, the longest.
+    let lines: Vec<(f64, f64, f64)> = svg
+        .split("<polyline")
+        .skip(1)
+        .filter_map(|p| {
+            let pts = p.split("points=\"").nth(1)?;
+            let xy: Vec<(f64, f64)> = pts[..pts.find('"')?]
+                .split_whitespace()
+                .map(|q| {
+                    let (a, b) = q.split_once(',').unwrap();
+                    (a.parse().unwrap(), b.parse().unwrap())
+                })
+                .collect();
+            (xy.len() == 2 && xy[0].1 == xy[1].1).then(|| (xy[0].0, xy[1].0, xy[0].1))
+        })
+        .filter(|(a, b, _)| b - a > 200.0)
+        .collect();
+    // The ten curves and the x axis (the lowest); a legend on the right would leave the
+    // curves about 200 px of the 400.
+    assert_eq!(lines.len(), 11, "{lines:?}");
+    let lowest = lines.iter().map(|l| l.2).fold(f64::MIN, f64::max);
+    assert!(lines.iter().all(|(a, b, _)| b - a > 0.6 * 400.0), "{lines:?}");
+    let labels: Vec<(f64, f64)> = (0..10).map(|i| label_at(&format!("c{i}"))).collect();
+    assert!(labels.iter().all(|&(_, y)| y > lowest + 20.0), "{labels:?} under {lowest}");
+    let columns: std::collections::BTreeSet<i64> = labels.iter().map(|&(x, _)| x as i64).collect();
+    assert!(columns.len() >= 2, "{labels:?}");
+}
+
+#[test]
 fn a_long_title_is_wrapped_to_the_figure_width() {
     let font: TextStyle = ("sans-serif", 22).into_font().into();
     let title =
