@@ -309,11 +309,11 @@ fn claims_table(claims: &[&ClaimRow], ids: bool) -> String {
     s
 }
 
-/// Writes the report; returns the number of figures and claims it shows.
-pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources, out: &Path) -> Result<(usize, usize)> {
+/// The pipeline's claims with the verdicts of the last run that evaluated them: the claims
+/// table where it exists; after a run of some targets only, the claims it did not reach are
+/// `not run`. An error when the run left nothing to show (no claims table, no figure).
+fn load_claims(p: &Pipeline, src: &Sources) -> Result<Vec<ClaimRow>> {
     let claims_stage = p.stages.iter().find(|s| s.kind == "claims").map(|s| s.name.clone());
-    // The claims table of the last run that evaluated the claims; after a run of some
-    // targets only, the claims it did not reach are `not run`.
     let table: Vec<ClaimRow> = match &claims_stage {
         Some(name) => {
             let path = src.tables_dir.join(format!("{name}.parquet"));
@@ -335,7 +335,12 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
             src.tables_dir.display()
         );
     }
-    let claims = pipeline_claims(p, table);
+    Ok(pipeline_claims(p, table))
+}
+
+/// Writes the report; returns the number of figures and claims it shows.
+pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources, out: &Path) -> Result<(usize, usize)> {
+    let claims = load_claims(p, src)?;
     let run: Option<RunReport> = match &src.run_report {
         Some(path) if path.exists() => {
             Some(serde_json::from_slice(&read_regular(path)?).with_context(|| format!("reading {}", path.display()))?)
