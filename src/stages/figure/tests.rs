@@ -128,15 +128,19 @@ fn the_automatic_legend_goes_where_it_covers_nothing() {
     assert!(matches!(least_covering_legend(&labels, area, &[]).0, P::UpperRight));
 }
 
+/// Ten horizontal lines across x in [0, 1] at a = 0 .. 9, group g the line's number.
+fn ten_horizontal_lines() -> Table {
+    let x: Vec<f64> = (0..10).flat_map(|_| [0.0, 1.0]).collect();
+    let y: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
+    Table::new().with_f64("x", x).with_f64("a", y.clone()).with_f64("g", y)
+}
+
 #[test]
 fn a_legend_that_covers_data_everywhere_inside_goes_outside_the_axes() {
     // Ten horizontal lines across the whole 400 x 300 figure leave no place inside the
     // axes for a legend of ten labels: the automatic legend is drawn right of the axes
     // (its labels start past the last x tick label), a pinned one stays inside.
-    let x: Vec<f64> = (0..10).flat_map(|_| [0.0, 1.0]).collect();
-    let y: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
-    let g: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
-    let t = Table::new().with_f64("x", x).with_f64("a", y).with_f64("g", g);
+    let t = ten_horizontal_lines();
     let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
     let mut l = layer("a", None);
     l.label = "curve number {g}".into();
@@ -189,10 +193,7 @@ fn a_legend_below_leaves_the_axes_the_figure_width_and_sits_under_them() {
     // Ten labels below a 400 x 300 figure: the data's lines span the axes' whole width
     // (the legend takes none of it), and every label is drawn under the x axis, in two
     // columns or more.
-    let x: Vec<f64> = (0..10).flat_map(|_| [0.0, 1.0]).collect();
-    let y: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
-    let g: Vec<f64> = (0..10).flat_map(|i| [i as f64, i as f64]).collect();
-    let t = Table::new().with_f64("x", x).with_f64("a", y).with_f64("g", g);
+    let t = ten_horizontal_lines();
     let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
     let mut l = layer("a", None);
     l.label = "c{g}".into();
