@@ -1,7 +1,8 @@
 //! Parameter values in a figure's text: a `{column}` in its title or axis labels is the
 //! value that column takes in the data the figure draws (the kept rows of its data layers),
-//! so that a figure run with other parameters says so. A column that takes several values
-//! there belongs in a layer's label (`{column}` per curve), not in the title: an error.
+//! so that a figure run with other parameters says so. Where the column takes several
+//! values there, the text lists them all ("W = 0.1 and 1"): a title never claims one value
+//! for data drawn at several (per curve, a layer's label says which).
 
 use super::series::kept_rows;
 use super::{FigureParams, Layer};
@@ -44,8 +45,25 @@ pub(super) fn text_reads(p: &FigureParams) -> Vec<ColumnRead> {
         .collect()
 }
 
-/// `text` with each placeholder replaced by the one value its column takes in the kept rows
-/// of the figure's data layers (`field` names the text in errors).
+/// Values in numeric order where they are numbers, as a sentence lists them: "1", "0.1 and
+/// 1", "0.1, 1 and 10".
+fn listed(values: &BTreeSet<String>) -> String {
+    let mut v: Vec<&String> = values.iter().collect();
+    v.sort_by(|a, b| match (a.parse::<f64>(), b.parse::<f64>()) {
+        (Ok(x), Ok(y)) => x.total_cmp(&y),
+        _ => a.cmp(b),
+    });
+    match v.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} and {last}", rest.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")),
+        None => String::new(),
+    }
+}
+
+/// `text` with each placeholder replaced by the values its column takes in the kept rows of
+/// the figure's data layers: one value where they agree, all of them where they do not (a
+/// figure drawing data at W = 0.1 and at W = 1 says so, not one of them) (`field` names the
+/// text in errors).
 fn fill(text: &str, field: &str, p: &FigureParams, inputs: &Inputs) -> Result<String> {
     let mut out = text.to_string();
     for name in placeholders(text) {
@@ -57,14 +75,10 @@ fn fill(text: &str, field: &str, p: &FigureParams, inputs: &Inputs) -> Result<St
             let keep = kept_rows(d, t)?;
             values.extend((0..t.n_rows()).filter(|&r| keep[r]).map(|r| column.display_at(r)));
         }
-        match values.len() {
-            1 => out = out.replace(&format!("{{{name}}}"), values.first().unwrap()),
-            0 => bail!("`{field}` names `{{{name}}}`, which no row the figure draws has"),
-            n => bail!(
-                "`{field}` names `{{{name}}}`, which takes {n} values in the data the figure draws ({}): name it in a layer's label instead",
-                values.into_iter().take(5).collect::<Vec<_>>().join(", ")
-            ),
+        if values.is_empty() {
+            bail!("`{field}` names `{{{name}}}`, which no row the figure draws has");
         }
+        out = out.replace(&format!("{{{name}}}"), &listed(&values));
     }
     Ok(out)
 }
