@@ -186,11 +186,11 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 17;
+    const VERSION: u32 = 18;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
     const COLUMNS: &'static [&'static str] =
-        &["series", "x", "y", "x_name", "y_name", "group_by", "group", "group_value", "y_error"];
+        &["series", "x", "y", "x_name", "y_name", "x_unit", "y_unit", "group_by", "group", "group_value", "y_error"];
     type Params = FigureParams;
 
     fn validate(p: &FigureParams) -> Vec<FieldError> {
@@ -322,7 +322,24 @@ impl Kind for Figure {
             .with_f64("x", rows.clone().map(|(_, x, _)| x).collect())
             .with_f64("y", rows.clone().map(|(_, _, y)| y).collect())
             .with("x_name", ColumnData::Str(rows.clone().map(|(s, _, _)| s.x_name.clone()).collect()))
-            .with("y_name", ColumnData::Str(rows.map(|(s, _, _)| s.y_name.clone()).collect()));
+            .with("y_name", ColumnData::Str(rows.clone().map(|(s, _, _)| s.y_name.clone()).collect()));
+        // Each point's units: its columns' (docs/outputs.md), the axis' for guide and fit
+        // lines (the first data series' with a documented unit).
+        let units = column_units();
+        let unit = |name: &str| units.get(name).cloned();
+        let axis_x = series.iter().find_map(|s| unit(&s.x_name)).unwrap_or_default();
+        let axis_y = series.iter().find_map(|s| unit(&s.y_name)).unwrap_or_default();
+        let table = table
+            .with(
+                "x_unit",
+                ColumnData::Str(
+                    rows.clone().map(|(s, _, _)| unit(&s.x_name).unwrap_or_else(|| axis_x.clone())).collect(),
+                ),
+            )
+            .with(
+                "y_unit",
+                ColumnData::Str(rows.map(|(s, _, _)| unit(&s.y_name).unwrap_or_else(|| axis_y.clone())).collect()),
+            );
         // The error column only where a layer has errors (0 for the other series' points).
         let table = if series.iter().any(|s| !s.errors.is_empty()) {
             let errors =
@@ -358,6 +375,15 @@ impl Kind for Figure {
         out.artifacts.insert("svg".into(), svg);
         Ok(out)
     }
+}
+
+/// The unit of every documented output column (docs/outputs.md; the first entry of a name).
+fn column_units() -> BTreeMap<String, String> {
+    let mut units = BTreeMap::new();
+    for (name, doc) in crate::stages::documented_columns() {
+        units.entry(name).or_insert(doc.unit);
+    }
+    units
 }
 
 pub fn register(r: &mut crate::pipeline::kind::Registry) {

@@ -319,3 +319,32 @@ fn layers_with_the_same_color_pair_their_curves() {
     assert_eq!(count(&paired, "2CA02C"), 0);
     assert_eq!(count(&paired, "1F77B4"), 2 * count(&free, "1F77B4"));
 }
+
+#[test]
+fn a_figure_table_carries_the_units_of_what_it_plots() {
+    // A data layer of δ/R against F_bar (units R and F_c in docs/outputs.md) and a guide
+    // line: the data's rows carry their columns' units, the guide's the axes'.
+    let t = Table::new().with_f64("delta_over_R", vec![0.1, 0.2]).with_f64("F_bar", vec![1.0, 2.0]);
+    let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+    let mut l = layer("F_bar", None);
+    (l.x, l.group_by, l.label) = ("delta_over_R".into(), None, "data".into());
+    let guide = GuideLayer {
+        slope: 1.0,
+        through: [0.1, 1.0],
+        x_from: 0.1,
+        x_to: 0.2,
+        label: "guide".into(),
+        style: Style::Dashed,
+    };
+    let fig = test_figure(vec![Layer::Data(l), Layer::Guide(guide)]);
+    let out = <Figure as Kind>::run(&fig, &inputs).unwrap();
+    let text = |name: &str| match out.table.column(name).unwrap() {
+        ColumnData::Str(v) => v.clone(),
+        _ => panic!("{name} is not text"),
+    };
+    let (names, xu, yu) = (text("y_name"), text("x_unit"), text("y_unit"));
+    for i in 0..names.len() {
+        assert_eq!((xu[i].as_str(), yu[i].as_str()), ("R", "F_c"), "row {i} ({})", names[i]);
+    }
+    assert!(names.iter().any(|n| n == "guide") && names.iter().any(|n| n == "F_bar"));
+}
