@@ -338,7 +338,9 @@ fn published_tables_carry_their_units_and_fixed_parameters() {
     let figure = meta("figures/fig.parquet");
     assert_eq!(figure["repro.params"]["x_label"], "λ");
     assert_eq!(figure["repro.params"]["y_label"], "P̄ pull-off");
-    assert_eq!(figure["repro.columns"]["x"]["unit"], "units of the x column");
+    // A figure's x and y carry their units per point (`x_unit`, `y_unit`).
+    assert_eq!(figure["repro.columns"]["x"]["unit"], "`x_unit`");
+    assert_eq!(figure["repro.columns"]["x_unit"]["unit"], "text");
     assert_eq!(figure["repro.columns"]["series"]["unit"], "text");
 }
 
