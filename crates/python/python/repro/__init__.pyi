@@ -1022,10 +1022,13 @@ def point(
 
     Columns:
         series [text]: the curve's legend label
-        x [units of the x column]: the plotted abscissa
-        y [units of the y column]: the plotted ordinate
+        x [`x_unit`]: the plotted abscissa
+        y [`y_unit`]: the plotted ordinate
         x_name [text]: the table column plotted as x
         y_name [text]: the table column plotted as y (`guide` for guide lines)
+        x_unit [text]: the unit of `x`: that of the column plotted (this file), the axis' for guide and
+            fit lines
+        y_unit [text]: the unit of `y`, likewise
         group_by [text]: the table column a layer groups its rows by (empty for an ungrouped series; the
             columns appear where some layer groups)
         group [text]: the point's group value as shown in the legend (empty for an ungrouped series)
@@ -1397,7 +1400,7 @@ def point(
             happens when `x <= 0`.
 
     Columns:
-        x [units of the x column]: the plotted abscissa
+        x [`x_unit`]: the plotted abscissa
     """
 
 @overload
@@ -1421,7 +1424,7 @@ def point(
         x (number; required, sweepable): Value echoed into the output table (sweepable).
 
     Columns:
-        x [units of the x column]: the plotted abscissa
+        x [`x_unit`]: the plotted abscissa
         upstream_rows []: (see docs/outputs.md)
         upstream_x []: (see docs/outputs.md)
     """
@@ -2450,10 +2453,13 @@ def sweep(
 
     Columns:
         series [text]: the curve's legend label
-        x [units of the x column]: the plotted abscissa
-        y [units of the y column]: the plotted ordinate
+        x [`x_unit`]: the plotted abscissa
+        y [`y_unit`]: the plotted ordinate
         x_name [text]: the table column plotted as x
         y_name [text]: the table column plotted as y (`guide` for guide lines)
+        x_unit [text]: the unit of `x`: that of the column plotted (this file), the axis' for guide and
+            fit lines
+        y_unit [text]: the unit of `y`, likewise
         group_by [text]: the table column a layer groups its rows by (empty for an ungrouped series; the
             columns appear where some layer groups)
         group [text]: the point's group value as shown in the legend (empty for an ungrouped series)
@@ -2885,7 +2891,7 @@ def sweep(
             happens when `x <= 0`.
 
     Columns:
-        x [units of the x column]: the plotted abscissa
+        x [`x_unit`]: the plotted abscissa
     """
 
 @overload
@@ -2914,7 +2920,7 @@ def sweep(
         x (number; required, sweepable): Value echoed into the output table (sweepable).
 
     Columns:
-        x [units of the x column]: the plotted abscissa
+        x [`x_unit`]: the plotted abscissa
         upstream_rows []: (see docs/outputs.md)
         upstream_x []: (see docs/outputs.md)
     """
