@@ -377,13 +377,17 @@ impl Kind for Figure {
     }
 }
 
-/// The unit of every documented output column (docs/outputs.md; the first entry of a name).
-fn column_units() -> BTreeMap<String, String> {
-    let mut units = BTreeMap::new();
-    for (name, doc) in crate::stages::documented_columns() {
-        units.entry(name).or_insert(doc.unit);
-    }
-    units
+/// The unit of every documented output column (docs/outputs.md; the first entry of a name),
+/// read once per process.
+fn column_units() -> &'static BTreeMap<String, String> {
+    static UNITS: std::sync::OnceLock<BTreeMap<String, String>> = std::sync::OnceLock::new();
+    UNITS.get_or_init(|| {
+        let mut units = BTreeMap::new();
+        for (name, doc) in crate::stages::documented_columns() {
+            units.entry(name).or_insert(doc.unit);
+        }
+        units
+    })
 }
 
 pub fn register(r: &mut crate::pipeline::kind::Registry) {

@@ -25,6 +25,21 @@ use super::{Balance, Cycle, CycleOptions, CyclePoint, Jump, Leg, Snap};
 use crate::fem::indent::{apex_z, Options, Step};
 use crate::fem::problem::ShellProblem;
 
+/// The snap at the flattened state `at`, the first whose inverted neighbour `inv` is lower,
+/// the last state before it at `delta_stable`: the jump lands at once, at the same delta.
+fn crossing(delta_stable: f64, at: &Step, inv: &Step) -> Jump {
+    Jump {
+        delta: at.delta,
+        force_before: at.contact.force,
+        delta_stable,
+        force_unstable: at.contact.force,
+        force_after: inv.contact.force,
+        radius_before: at.contact.radius,
+        pull_before: at.contact.adhesive,
+        delta_after: at.delta,
+    }
+}
+
 impl ShellProblem<'_> {
     /// The total potential energy Pi of the state `s` (module doc); None if an element is
     /// inverted.
@@ -78,16 +93,7 @@ impl ShellProblem<'_> {
         }
         let at = &points[flat[hi]].step;
         let before = &points[if hi > 0 { flat[hi - 1] } else { flat[0].saturating_sub(1) }].step;
-        let jump = Jump {
-            delta: at.delta,
-            force_before: at.contact.force,
-            delta_stable: before.delta,
-            force_unstable: at.contact.force,
-            force_after: inv.contact.force,
-            radius_before: at.contact.radius,
-            pull_before: at.contact.adhesive,
-            delta_after: at.delta,
-        };
+        let jump = crossing(before.delta, at, &inv);
         (flat[hi], inv, jump)
     }
 
@@ -174,16 +180,7 @@ impl ShellProblem<'_> {
                 }
                 points.push(flat(hi.clone()));
                 inv.stable = self.is_stable(&inv, local.criterion, local.hold);
-                let jump = Jump {
-                    delta: hi.delta,
-                    force_before: hi.contact.force,
-                    delta_stable: lo.delta,
-                    force_unstable: hi.contact.force,
-                    force_after: inv.contact.force,
-                    radius_before: hi.contact.radius,
-                    pull_before: hi.contact.adhesive,
-                    delta_after: hi.delta,
-                };
+                let jump = crossing(lo.delta, &hi, &inv);
                 loading = Loading::resumed(self, local, points, inv, jump);
                 loading.run();
             }
