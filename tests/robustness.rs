@@ -418,3 +418,43 @@ fn a_task_that_would_need_more_memory_than_there_is_is_not_started_and_the_other
     let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
     assert_eq!(small["status"], "computed");
 }
+
+#[test]
+fn a_shell_cycle_that_no_memory_holds_is_refused_before_it_allocates() {
+    // Every parameter within its range (20000 x 16 elements, 1e5 steps), the cycle's kept
+    // states and band factors need about 5.6 TB (`fem::mesh::cycle_memory_bound`: 2e6
+    // dofs, 3e5 states of 18.6 MB): refused by `repro point` and by `repro run`, where the
+    // other stage runs. Before the shell kinds had an estimate, both started and allocated.
+    let s = Scratch::new("shell-memory");
+    let shell = "{R: 15, h: 1, n_meridian: 20000, n_thickness: 16}";
+    let shell_arg = format!("shell={shell}");
+    let out = s
+        .command(&["point", "fem.indent", &shell_arg, "delta_max=0.5", "steps=100000"])
+        .env("REPRO_MEMORY_BYTES", "4e9")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("not started: it may need 5590.8 GB of memory, 4.0 GB is available"), "{err}");
+    s.write(
+        "p.yaml",
+        &format!(
+            "stages:\n  - name: big\n    kind: fem.indent\n    params: {{shell: {shell}, delta_max: 0.5, steps: 100000}}\n  - name: small\n    kind: util.sleep\n    params: {{x: 1}}\n"
+        ),
+    );
+    let out = s
+        .command(&["run", "p.yaml", "-q", "--report", "report.json"])
+        .env("REPRO_MEMORY_BYTES", "4e9")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&s.read("report.json")).unwrap();
+    let tasks = report["tasks"].as_array().unwrap();
+    let big = tasks.iter().find(|t| t["stage"] == "big").unwrap();
+    assert_eq!(big["failure"]["kind"], "resources", "{big}");
+    let needed = big["failure"]["needed_bytes"].as_u64().unwrap() as f64;
+    assert!((5.5e12..5.7e12).contains(&needed), "{needed}");
+    assert!(big["wall_time_s"].as_f64().unwrap() < 0.1, "refused before it ran: {big}");
+    let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
+    assert_eq!(small["status"], "computed");
+}

@@ -11,7 +11,7 @@
 //! differing carries its reason and the docs section that explains it.
 
 use super::check;
-use crate::numerics::fit::power_law;
+use crate::numerics::fit::{linear_r_squared, power_law};
 use crate::pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, Registry};
 use crate::pipeline::table::{format_number, ColumnData, Table};
 use anyhow::{bail, Context, Result};
@@ -38,6 +38,9 @@ pub enum Aggregate {
     Decreasing,
     /// The number of kept rows (`y` unused).
     Count,
+    /// The coefficient of determination R² of the least-squares straight line through
+    /// (x, y): 1 when y is linear in x (at least 3 rows, y not constant).
+    Linearity,
     /// The largest y over the smallest (a spread: 1 when constant; y > 0).
     MaxOverMin,
     /// y at the largest x over y at the smallest x.
@@ -54,6 +57,7 @@ impl Aggregate {
                 | Aggregate::Increasing
                 | Aggregate::Decreasing
                 | Aggregate::LastOverFirst
+                | Aggregate::Linearity
         )
     }
 }
@@ -66,6 +70,10 @@ pub struct Quantity {
     pub from: String,
     /// The column reduced (any numeric or boolean column).
     pub y: String,
+    /// A column that divides `y` row by row before the reduction (a ratio of two results of
+    /// one row, e.g. an estimate over the computed value).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub over: Option<String>,
     /// The abscissa of `argmax`, `argmin`, `slope`, `increasing`, `decreasing`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<String>,
@@ -82,11 +90,19 @@ pub struct Quantity {
 }
 
 impl Quantity {
+    /// The column reduced as it reads: `y`, or `y / over`.
+    pub fn column(&self) -> String {
+        match &self.over {
+            Some(d) => format!("{} / {d}", self.y),
+            None => self.y.clone(),
+        }
+    }
+
     /// What is compared, in words: "value of `stage.y` where a = 1, b = 2", "argmax of
     /// `stage.y` against `x` for x in [1, 10]".
     pub fn describe(&self) -> String {
         let aggregate = serde_json::to_value(self.aggregate).ok().and_then(|v| v.as_str().map(str::to_string));
-        let mut s = format!("{} of {}.{}", aggregate.unwrap_or_default(), self.from, self.y);
+        let mut s = format!("{} of {}.{}", aggregate.unwrap_or_default(), self.from, self.column());
         if let Some(x) = &self.x {
             s.push_str(&format!(" against {x}"));
         }
@@ -250,7 +266,13 @@ pub struct ClaimParams {
 fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64)>> {
     let t = inputs.table(&q.from)?;
     let n = t.n_rows();
-    let ys = if q.aggregate == Aggregate::Count { vec![0.0; n] } else { t.f64_column(&q.y)? };
+    let mut ys = if q.aggregate == Aggregate::Count { vec![0.0; n] } else { t.f64_column(&q.y)? };
+    if let Some(d) = &q.over {
+        let ds = t.f64_column(d).with_context(|| format!("over `{d}`"))?;
+        for (y, d) in ys.iter_mut().zip(ds) {
+            *y /= d;
+        }
+    }
     let xs = match &q.x {
         Some(x) => t.f64_column(x).with_context(|| format!("x `{x}`"))?,
         None => vec![0.0; n],
@@ -275,7 +297,11 @@ fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64)>> {
         .filter(|&i| passes.iter().all(|p| p[i]))
         .filter(|&i| q.x_min.is_none_or(|a| xs[i] >= a) && q.x_max.is_none_or(|b| xs[i] <= b))
         .map(|i| (xs[i], ys[i]))
-        .collect())
+        .collect::<Vec<_>>())
+        .and_then(|rows| match rows.iter().find(|r| !r.1.is_finite()) {
+            Some(r) => bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0),
+            None => Ok(rows),
+        })
 }
 
 /// The quantity's value.
@@ -308,6 +334,8 @@ pub fn measure(q: &Quantity, inputs: &Inputs) -> Result<f64> {
         Aggregate::Increasing => f64::from(u8::from(rows.windows(2).all(|w| w[1].1 > w[0].1))),
         Aggregate::Decreasing => f64::from(u8::from(rows.windows(2).all(|w| w[1].1 < w[0].1))),
         Aggregate::Count => rows.len() as f64,
+        Aggregate::Linearity => linear_r_squared(&rows)
+            .with_context(|| format!("`linearity` of `{}` needs at least 3 rows and a y that varies", q.from))?,
         Aggregate::MaxOverMin => {
             let (lo, hi) = rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(r.1), b.max(r.1)));
             if !(lo > 0.0) {
@@ -329,7 +357,7 @@ pub struct Claim;
 
 impl Kind for Claim {
     const NAME: &'static str = "claim";
-    const VERSION: u32 = 1;
+    const VERSION: u32 = 2;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "A statement of the thesis checked against a published table: the quantity, the thesis' value, the verdict";
@@ -384,6 +412,7 @@ impl Kind for Claim {
         if q.aggregate != Aggregate::Count {
             reads.push(read("quantity.y".into(), &q.y));
         }
+        reads.extend(q.over.iter().map(|d| read("quantity.over".into(), d)));
         reads.extend(q.x.iter().map(|x| read("quantity.x".into(), x)));
         reads.extend(q.filter.keys().map(|k| read(format!("quantity.filter.{k}"), k)));
         reads
@@ -405,7 +434,7 @@ impl Kind for Claim {
             .with("source", ColumnData::Str(vec![p.source.clone()]))
             .with("statement", ColumnData::Str(vec![p.statement.clone()]))
             .with("stage", ColumnData::Str(vec![p.quantity.from.clone()]))
-            .with("column", ColumnData::Str(vec![p.quantity.y.clone()]))
+            .with("column", ColumnData::Str(vec![p.quantity.column()]))
             .with("aggregate", ColumnData::Str(vec![format!("{:?}", p.quantity.aggregate).to_lowercase()]))
             .with_f64("value", vec![value])
             .with("thesis", ColumnData::Str(vec![p.thesis.describe()]))

@@ -118,6 +118,11 @@ pub fn available_memory() -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// A size as a person reads it: "5602.3 GB", "0.8 GB", "96 MB" (below 0.1 GB).
 fn gigabytes(bytes: u64) -> String {
-    format!("{:.1} GB", bytes as f64 / 1e9)
+    if bytes < 100_000_000 {
+        format!("{} MB", (bytes as f64 / 1e6).round())
+    } else {
+        format!("{:.1} GB", bytes as f64 / 1e9)
+    }
 }

@@ -60,14 +60,7 @@ pub struct BucklingParams {
 impl BucklingParams {
     /// The model with the point's imperfection.
     fn point_model(&self) -> MapModel {
-        let mut m = self.model.clone();
-        if let Some(a) = self.apex_force {
-            m.imperfection.apex_force = a;
-        }
-        if let Some(d) = self.dimple {
-            m.imperfection.dimple = d;
-        }
-        m
+        self.model.at_point(None, self.apex_force, self.dimple)
     }
 }
 
@@ -113,6 +106,10 @@ impl Kind for FemBuckling {
         "wall_time_s",
     ];
     type Params = BucklingParams;
+
+    fn memory_bytes(p: &BucklingParams) -> Option<u64> {
+        Some(p.point_model().memory_bytes(p.h_over_R, p.mesh_study))
+    }
 
     fn validate(p: &BucklingParams) -> Vec<FieldError> {
         let mut e = Vec::new();
@@ -274,6 +271,12 @@ impl Kind for FemBucklingLimit {
         "wall_time_s",
     ];
     type Params = LimitParams;
+
+    /// One cycle at a time, on the default mesh of the thickest shell bisected (it grows
+    /// with R + h) unless the mesh is given: the larger of the two ends.
+    fn memory_bytes(p: &LimitParams) -> Option<u64> {
+        Some(p.model.memory_bytes(p.h_lo, false).max(p.model.memory_bytes(p.h_hi, false)))
+    }
 
     fn validate(p: &LimitParams) -> Vec<FieldError> {
         let mut e = Vec::new();

@@ -55,8 +55,29 @@ pub struct GammaCParams {
     #[serde(default = "default_rel_tol")]
     #[schemars(extend("exclusiveMinimum" = 0.0, "exclusiveMaximum" = 10.0))]
     pub rel_tol: f64,
+    /// The Lennard-Jones range g0 in mm (sweepable; default: `model.g0`; the default mesh
+    /// follows it), for studies of gamma_c's limit as the regularisation goes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
+    pub g0: Option<f64>,
+    /// The apex force of the imperfection in units of F_c = E h^3 / R (sweepable; default:
+    /// `model.imperfection.apex_force`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
+    pub apex_force: Option<f64>,
+    /// The dimple depth of the imperfection in units of h (sweepable; default:
+    /// `model.imperfection.dimple`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dimple: Option<f64>,
     #[serde(default)]
     pub model: MapModel,
+}
+
+impl GammaCParams {
+    /// The model with the point's range g0 and imperfection.
+    fn point_model(&self) -> MapModel {
+        self.model.at_point(self.g0, self.apex_force, self.dimple)
+    }
 }
 
 /// The critical adhesion at one (h/R, mu).
@@ -64,13 +85,17 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 26;
+    const VERSION: u32 = 27;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
-    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu"];
+    const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu", "g0", "apex_force", "dimple"];
     const COLUMNS: &'static [&'static str] = &[
         "h_over_R",
         "mu",
+        "g0",
+        "apex_force",
+        "dimple",
+        "n_meridian",
         "gamma_c_over_Eh",
         "gamma_lo_over_Eh",
         "gamma_hi_over_Eh",
@@ -92,14 +117,19 @@ impl Kind for FemGammaC {
 
     fn validate(p: &GammaCParams) -> Vec<FieldError> {
         let mut e = Vec::new();
-        p.model.validate(&mut e);
-        p.model.validate_mesh(p.h_over_R, &mut e);
+        let m = p.point_model();
+        m.validate(&mut e);
+        m.validate_mesh(p.h_over_R, &mut e);
         e
+    }
+
+    fn memory_bytes(p: &GammaCParams) -> Option<u64> {
+        Some(p.point_model().memory_bytes(p.h_over_R, false))
     }
 
     fn run(p: &GammaCParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
-        let m = &p.model;
+        let m = &p.point_model();
         let model = m.shell(p.h_over_R);
         let scale = m.E * m.h(p.h_over_R);
         let opt = m.options(false);
@@ -118,6 +148,10 @@ impl Kind for FemGammaC {
         Ok(Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("mu", vec![p.mu])
+            .with_f64("g0", vec![m.g0])
+            .with_f64("apex_force", vec![m.imperfection.apex_force])
+            .with_f64("dimple", vec![m.imperfection.dimple])
+            .with("n_meridian", ColumnData::I64(vec![m.meridian_elements(p.h_over_R) as i64]))
             .with_f64("gamma_c_over_Eh", vec![finite(mid)])
             .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
             .with_f64("gamma_hi_over_Eh", vec![finite(b.hi / scale)])

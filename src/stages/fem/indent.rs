@@ -336,6 +336,10 @@ impl Kind for FemIndent {
         e
     }
 
+    fn memory_bytes(p: &IndentParams) -> Option<u64> {
+        Some(p.shell.memory_bytes(p.g0, p.steps, p.mesh_study))
+    }
+
     fn run(p: &IndentParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let (model, cycles) = p.cycles(p.delta_max, true);

@@ -213,11 +213,27 @@ impl MapModel {
         }
     }
 
+    /// The model of one point of a sweep over the interface's range and the imperfection:
+    /// each given value replaces the model's (`g0` in mm, `apex_force` in F_c, `dimple` in h).
+    pub(super) fn at_point(&self, g0: Option<f64>, apex_force: Option<f64>, dimple: Option<f64>) -> MapModel {
+        let mut m = self.clone();
+        m.g0 = g0.unwrap_or(m.g0);
+        m.imperfection.apex_force = apex_force.unwrap_or(m.imperfection.apex_force);
+        m.imperfection.dimple = dimple.unwrap_or(m.imperfection.dimple);
+        m
+    }
+
     /// Checks the mesh of the shell at `h_over_r` (the default one resolves g0).
     pub(super) fn validate_mesh(&self, h_over_r: f64, e: &mut Vec<FieldError>) {
         if self.n_meridian.is_none() {
             e.extend(super::default_mesh_error("model.n_meridian", self.R, self.h(h_over_r), self.g0));
         }
+    }
+
+    /// The memory of one cycle at `h_over_r` (`fem::mesh::cycle_memory_bound`), with the
+    /// mesh study's companion alongside.
+    pub(super) fn memory_bytes(&self, h_over_r: f64, mesh_study: bool) -> u64 {
+        super::cycle_memory_bytes(self.meridian_elements(h_over_r), self.n_thickness, self.steps, mesh_study)
     }
 
     pub(super) fn h(&self, h_over_r: f64) -> f64 {

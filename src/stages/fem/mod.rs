@@ -113,6 +113,13 @@ impl ShellParams {
         self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0))
     }
 
+    /// The memory a cycle of `steps` load steps allocates on this shell's mesh at the
+    /// Lennard-Jones range `g0` (`fem::mesh::cycle_memory_bound`), with the mesh study's
+    /// companion on twice the meridian elements alongside.
+    pub(super) fn memory_bytes(&self, g0: f64, steps: usize, mesh_study: bool) -> u64 {
+        cycle_memory_bytes(self.meridian(g0), self.n_thickness, steps, mesh_study)
+    }
+
     /// The mesh on `n` meridian elements, before the imperfection's dimple.
     pub(super) fn mesh_on(&self, n: usize) -> ShellMesh {
         ShellMesh::hemisphere(self.R, self.h, n, self.n_thickness, self.grading)
@@ -122,6 +129,16 @@ impl ShellParams {
     pub(super) fn mesh(&self, g0: f64) -> ShellMesh {
         self.imperfection.shape(self.mesh_on(self.meridian(g0)))
     }
+}
+
+/// The memory of a cycle of `steps` load steps on `n_meridian` x `n_thickness` elements
+/// (the path's states: about two per step, measured; three are counted), with the mesh
+/// study's companion on twice the meridian elements alongside.
+pub(super) fn cycle_memory_bytes(n_meridian: usize, n_thickness: usize, steps: usize, mesh_study: bool) -> u64 {
+    let states = steps.saturating_mul(3).saturating_add(64);
+    let one = |n: usize| crate::fem::mesh::cycle_memory_bound(n, n_thickness, states);
+    let companion = if mesh_study { one(n_meridian.saturating_mul(2)) } else { 0 };
+    one(n_meridian).saturating_add(companion)
 }
 
 /// The default meridian mesh of a shell of radius `r` and thickness `h` resolves the
@@ -160,6 +177,12 @@ impl Kind for FemMesh {
         let mut e = Vec::new();
         p.validate(default_g0(), &mut e);
         e
+    }
+
+    /// The mesh and its table: a few hundred bytes a node.
+    fn memory_bytes(p: &ShellParams) -> Option<u64> {
+        let nodes = crate::fem::mesh::node_count(p.meridian(default_g0()), p.n_thickness);
+        Some((64u64 << 20).saturating_add(nodes.saturating_mul(256)))
     }
 
     fn run(p: &ShellParams, _: &Inputs) -> Result<Output> {

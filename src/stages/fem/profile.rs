@@ -78,6 +78,10 @@ impl Kind for FemProfile {
         e
     }
 
+    fn memory_bytes(p: &ProfileParams) -> Option<u64> {
+        Some(p.cycle.shell.memory_bytes(p.cycle.g0, p.cycle.steps, p.cycle.mesh_study))
+    }
+
     fn run(p: &ProfileParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let top = p.points.iter().map(|q| q.delta).fold(0.0, f64::max);

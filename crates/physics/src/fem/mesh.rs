@@ -89,6 +89,34 @@ pub fn meridian_elements(radius: f64, thickness: f64, g0: f64) -> usize {
     (MERIDIAN_ELEMENTS_PER_G0 * (radius + thickness) / g0).ceil().max(4.0) as usize
 }
 
+/// Nodes of the mesh: (n_meridian + 1) columns of 2 n_thickness + 1 corner and mid-side
+/// nodes, and n_meridian columns of n_thickness + 1 mid-side ones (no element centres).
+pub fn node_count(n_meridian: usize, n_thickness: usize) -> u64 {
+    let (m, t) = (n_meridian as u64, n_thickness as u64);
+    (m + 1) * (2 * t + 1) + m * (t + 1)
+}
+
+/// The half-width, in degrees of freedom, of the tangent's band on this numbering (nodes
+/// along the meridian, through the thickness within a column): an element spans a corner
+/// column of 2 n_thickness + 1 nodes, a mid-side column of n_thickness + 1 and 3 of the
+/// next corner column, 3 n_thickness + 5 nodes, so |i - j| <= 6 n_thickness + 9.
+pub fn half_band(n_thickness: usize) -> usize {
+    6 * n_thickness + 9
+}
+
+/// An upper bound on the bytes a load-unload cycle of the shell allocates on this mesh,
+/// keeping `states` states of its path, estimated before anything is allocated. Per
+/// degree of freedom: the band LU with room for its fill (3 half-bands), the Cholesky band
+/// (1), the sparse tangent's values and indices (4 x 2) and 76 work vectors; per kept
+/// state its displacements and its contact nodes' state; 64 MiB for the process. Against
+/// peak resident sets, 1.8-2.4 times the measured (docs/reliability.md, "Resources").
+pub fn cycle_memory_bound(n_meridian: usize, n_thickness: usize, states: usize) -> u64 {
+    let dofs = 2 * node_count(n_meridian, n_thickness);
+    let per_dof = 8 * (12 * half_band(n_thickness) as u64 + 76);
+    let per_state = 8 * dofs + 64 * (2 * n_meridian as u64 + 1);
+    (64u64 << 20).saturating_add(dofs.saturating_mul(per_dof)).saturating_add((states as u64).saturating_mul(per_state))
+}
+
 /// Meridian angles of the element boundaries: `n` elements on [0, pi/2] whose sizes grow
 /// geometrically from the apex so that the last is `grading` times the first.
 pub fn graded_angles(n: usize, grading: f64) -> Vec<f64> {

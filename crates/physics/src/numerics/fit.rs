@@ -34,24 +34,48 @@ pub fn power_law_regime(points: &[(f64, f64)], slope: f64, tol: f64, min_points:
     best.filter(|(a, b)| b + 1 - a >= min_points)
 }
 
+/// The sums of a least-squares straight line through points: their means and centred
+/// second moments.
+struct Moments {
+    n: usize,
+    mx: f64,
+    my: f64,
+    sxx: f64,
+    sxy: f64,
+    syy: f64,
+}
+
+impl Moments {
+    fn of(points: &[(f64, f64)]) -> Moments {
+        let n = points.len();
+        let nf = n as f64;
+        let mx = points.iter().map(|p| p.0).sum::<f64>() / nf;
+        let my = points.iter().map(|p| p.1).sum::<f64>() / nf;
+        let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
+        let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+        let syy: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
+        Moments { n, mx, my, sxx, sxy, syy }
+    }
+}
+
+/// The coefficient of determination R² of the least-squares straight line y = a + b x
+/// through the points: 1 when they lie on a line; None with fewer than 3 points or no
+/// spread in x or in y.
+pub fn linear_r_squared(points: &[(f64, f64)]) -> Option<f64> {
+    let m = Moments::of(points);
+    (m.n >= 3 && m.sxx > 0.0 && m.syy > 0.0).then(|| m.sxy * m.sxy / (m.sxx * m.syy))
+}
+
 /// Fits y = c x^s to the points with x, y > 0; None with fewer than 3 such points or no
 /// spread in x.
 pub fn power_law(points: &[(f64, f64)]) -> Option<PowerLaw> {
     let logs: Vec<(f64, f64)> =
         points.iter().filter(|(x, y)| *x > 0.0 && *y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
-    let n = logs.len();
-    if n < 3 {
+    let Moments { n, mx, my, sxx, sxy, syy } = Moments::of(&logs);
+    if n < 3 || sxx <= 0.0 {
         return None;
     }
     let nf = n as f64;
-    let mx = logs.iter().map(|p| p.0).sum::<f64>() / nf;
-    let my = logs.iter().map(|p| p.1).sum::<f64>() / nf;
-    let sxx: f64 = logs.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let syy: f64 = logs.iter().map(|p| (p.1 - my).powi(2)).sum();
-    if sxx <= 0.0 {
-        return None;
-    }
     let slope = sxy / sxx;
     let intercept = my - slope * mx;
     let rss: f64 = logs.iter().map(|p| (p.1 - intercept - slope * p.0).powi(2)).sum();
@@ -73,6 +97,17 @@ pub fn power_law(points: &[(f64, f64)]) -> Option<PowerLaw> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_straight_line_has_r_squared_one_and_a_parabola_less() {
+        let line: Vec<(f64, f64)> = (0..5).map(|i| (i as f64, 2.0 + 3.0 * i as f64)).collect();
+        assert!((linear_r_squared(&line).unwrap() - 1.0).abs() < 1e-12);
+        // y = x^2 on x = 0..4: R^2 = Sxy^2 / (Sxx Syy) = 40^2 / (10 * 174) = 0.91954.
+        let parabola: Vec<(f64, f64)> = (0..5).map(|i| (i as f64, (i * i) as f64)).collect();
+        assert!((linear_r_squared(&parabola).unwrap() - 1600.0 / 1740.0).abs() < 1e-12);
+        assert_eq!(linear_r_squared(&line[..2]), None);
+        assert_eq!(linear_r_squared(&[(0.0, 1.0), (1.0, 1.0), (2.0, 1.0)]), None);
+    }
 
     #[test]
     fn regimes_are_the_longest_runs_of_matching_local_slope() {

@@ -80,6 +80,16 @@ fn the_tangent_is_a_band_of_one_elements_width() {
     let (e, r) = (1.3, 15.0);
     let model = Model::new(ShellMesh::hemisphere(r, 1.0, 40, 2, 3.0), e, 0.45, Base::Clamped);
     assert!(model.pattern.half_band <= 21 && model.pattern.half_band >= 19, "{}", model.pattern.half_band);
+    // The memory bound's node count and half-band (`mesh::node_count`, `mesh::half_band`)
+    // hold for any layering: the count exactly, the band from above by at most the fixed
+    // dofs' two.
+    for layers in [1, 2, 4, 8] {
+        let mesh = ShellMesh::hemisphere(r, 1.0, 12, layers, 3.0);
+        assert_eq!(crate::fem::mesh::node_count(12, layers), mesh.nodes.len() as u64);
+        let band = Model::new(mesh, e, 0.45, Base::Clamped).pattern.half_band;
+        let bound = crate::fem::mesh::half_band(layers);
+        assert!(band <= bound && band + 2 >= bound, "{layers} layers: {band} against {bound}");
+    }
     let plate = crate::fem::contact::Plate::new(&model.mesh, e, 1000.0).with_friction(0.5);
     let path = crate::fem::indent::load_path(&model, &plate, e, 0.12 * r, 12, 4);
     assert!(path.iter().all(|s| s.converged) && path.last().unwrap().contact.force > 0.0);
