@@ -118,9 +118,27 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
         time_limit_s: time_limit,
         counter: None,
     };
-    let rep = executor::run(&p, registry, &opts)?;
+    let rep = match executor::run(&p, registry, &opts) {
+        Ok(rep) => rep,
+        Err(e) => {
+            // The run stopped before its tasks (the cache not writable, a full disk): the
+            // report still says so, wherever it can be written.
+            if let (Some(path), executor::RunError::Io(why)) = (&report, &e) {
+                let failed = report::RunReport {
+                    pipeline: pipeline.display().to_string(),
+                    dry_run,
+                    errors: vec![format!("{why:#}")],
+                    ..Default::default()
+                };
+                if let Err(w) = write_run_report(path, &failed) {
+                    eprintln!("repro: error: {w:#}");
+                }
+            }
+            return Err(e.into());
+        }
+    };
     if let Some(path) = report {
-        std::fs::write(&path, serde_json::to_vec_pretty(&rep)?)?;
+        write_run_report(&path, &rep)?;
     }
     // A dry run's plan goes to stdout (per stage; per task with --explain).
     if dry_run {
@@ -149,6 +167,12 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
     } else {
         Exit::Success
     })
+}
+
+/// Writes the run report (`--report FILE`), naming the file if it cannot.
+fn write_run_report(path: &std::path::Path, run: &report::RunReport) -> anyhow::Result<()> {
+    std::fs::write(path, serde_json::to_vec_pretty(run)?)
+        .with_context(|| format!("writing the run report {}", path.display()))
 }
 
 /// `repro worker`.

@@ -86,35 +86,55 @@ fn yaml(v: &Value) -> String {
     out
 }
 
-#[test]
-fn extreme_parameters_end_every_point_with_an_answer() {
-    let s = Scratch::new("extremes");
-    // Kinds that read no other stage's table (the others fail at once without inputs).
-    let kinds: Vec<(&str, Value)> = crate::kind_versions::reference_params()
+/// The kinds drawn: those that read no other stage's table (the others fail at once
+/// without inputs), with their reference parameters.
+fn drawable_kinds() -> Vec<(&'static str, Value)> {
+    crate::kind_versions::reference_params()
         .into_iter()
         .filter(|(k, _)| {
             !k.starts_with("bench.")
                 && !["pb.calibrate", "fem.gamma_c_map", "claim", "claims", "fit.powerlaw", "figure"].contains(k)
         })
-        .collect();
+        .collect()
+}
+
+/// One draw: a kind, its reference parameters with one to three numbers set to extremes,
+/// and what was changed.
+fn draw(rng: &mut Rng, kinds: &[(&'static str, Value)]) -> (&'static str, Value, String) {
+    let (kind, reference) = &kinds[rng.below(kinds.len())];
+    let mut params = reference.clone();
+    let mut paths = Vec::new();
+    number_paths(&params, &mut Vec::new(), &mut paths);
+    let mut changed = Vec::new();
+    for _ in 0..=rng.below(3) {
+        if paths.is_empty() {
+            break;
+        }
+        let path = paths[rng.below(paths.len())].clone();
+        let to = EXTREMES[rng.below(EXTREMES.len())];
+        set(&mut params, &path, to);
+        changed.push(format!("{}={to}", path.join(".")));
+    }
+    (kind, params, changed.join(" "))
+}
+
+/// The largest resident set of any child of this test process so far, in bytes.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn largest_child_bytes() -> f64 {
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) }, 0);
+    usage.ru_maxrss as f64 * 1024.0
+}
+
+#[test]
+fn extreme_parameters_end_every_point_with_an_answer() {
+    let s = Scratch::new("extremes");
+    let kinds = drawable_kinds();
     let mut rng = Rng(0x5EED_2026);
     let mut outcomes = std::collections::BTreeMap::<i32, usize>::new();
     let mut bad = Vec::new();
     for _ in 0..DRAWS {
-        let (kind, reference) = &kinds[rng.below(kinds.len())];
-        let mut params = reference.clone();
-        let mut paths = Vec::new();
-        number_paths(&params, &mut Vec::new(), &mut paths);
-        let mut changed = Vec::new();
-        for _ in 0..=rng.below(3) {
-            if paths.is_empty() {
-                break;
-            }
-            let path = paths[rng.below(paths.len())].clone();
-            let to = EXTREMES[rng.below(EXTREMES.len())];
-            set(&mut params, &path, to);
-            changed.push(format!("{}={to}", path.join(".")));
-        }
+        let (kind, params, changed) = draw(&mut rng, &kinds);
         let args: Vec<String> = params
             .as_object()
             .unwrap()
@@ -139,21 +159,81 @@ fn extreme_parameters_end_every_point_with_an_answer() {
         *outcomes.entry(code).or_default() += 1;
         let err = String::from_utf8_lossy(&out.stderr);
         if ![0, 1, 2].contains(&code) || dt > Duration::from_secs_f64(LIMIT_S) + MARGIN {
-            bad.push(format!("{kind} {} -> exit {code} after {dt:?}: {}", changed.join(" "), err.trim()));
+            bad.push(format!("{kind} {changed} -> exit {code} after {dt:?}: {}", err.trim()));
         }
     }
     eprintln!("outcomes by exit code: {outcomes:?}");
     assert!(bad.is_empty(), "{} of {DRAWS} draws ended badly:\n{}", bad.len(), bad.join("\n"));
     // The draws reach the solvers, not only the validation: some compute, some fail.
     assert!(outcomes.get(&0).copied().unwrap_or(0) > 10 && outcomes.get(&2).copied().unwrap_or(0) > 10, "{outcomes:?}");
-    // No point allocated past the memory the draws allowed (the largest resident set of any
-    // child of this test process so far, these points among them).
+    // No point allocated past the memory the draws allowed (these points among the children).
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     {
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        assert_eq!(unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) }, 0);
-        let peak_bytes = usage.ru_maxrss as f64 * 1024.0;
+        let peak_bytes = largest_child_bytes();
         eprintln!("largest child resident set: {:.2} GB", peak_bytes / 1e9);
         assert!(peak_bytes < 4e9, "a child reached {:.1} GB", peak_bytes / 1e9);
     }
+}
+
+/// Draws through `repro run`, which a point's draws do not reach: the pipeline file's
+/// parser and checks, the executor's guard, the cache and publishing. Each draw a file of
+/// its own, beside a stage that always computes (most draws are invalid input, which
+/// refuses the whole file, exit 2).
+const RUN_DRAWS: usize = 150;
+
+#[test]
+fn extreme_parameters_in_a_pipeline_end_every_run_with_an_answer() {
+    let s = Scratch::new("extremes-run");
+    let kinds = drawable_kinds();
+    let mut rng = Rng(0x5EED_2027);
+    let mut outcomes = std::collections::BTreeMap::<i32, usize>::new();
+    let mut bad = Vec::new();
+    for run in 0..RUN_DRAWS {
+        let (kind, params, what) = draw(&mut rng, &kinds);
+        let changed = format!("{kind} {what}");
+        s.write(
+            "p.yaml",
+            &format!(
+                "stages:\n  - name: drawn\n    kind: {kind}\n    params: {}\n  - name: other\n    kind: util.sleep\n    params: {{x: {run}}}\n",
+                yaml(&params)
+            ),
+        );
+        let t0 = Instant::now();
+        let out = s
+            .command(&["run", "p.yaml", "-q", "--time-limit", &LIMIT_S.to_string(), "--report", "r.json"])
+            .env("REPRO_MEMORY_BYTES", "4e9")
+            .output()
+            .unwrap();
+        let dt = t0.elapsed();
+        let code = out.status.code().unwrap_or(-1);
+        *outcomes.entry(code).or_default() += 1;
+        let err = String::from_utf8_lossy(&out.stderr);
+        // 0: computed; 1: the drawn task failed (memory, time limit, a contained panic); 2:
+        // invalid input, located in the file.
+        let located = code != 2 || err.contains("p.yaml:");
+        if ![0, 1, 2].contains(&code) || !located || dt > Duration::from_secs_f64(LIMIT_S) + MARGIN {
+            bad.push(format!("run {run}: {changed} -> exit {code} after {dt:?}: {}", err.trim()));
+        }
+        if code == 0 || code == 1 {
+            // The report records the drawn task's outcome (a failure with its reason), and
+            // the other stage computed whatever the drawn one did.
+            let report: Value = serde_json::from_slice(&std::fs::read(s.path("r.json")).unwrap()).unwrap();
+            let tasks = report["tasks"].as_array().unwrap();
+            let status = |stage: &str| tasks.iter().find(|t| t["stage"] == stage).map(|t| t["status"].clone());
+            let drawn_ok = if code == 1 {
+                tasks.iter().any(|t| t["stage"] == "drawn" && t["status"] == "failed" && t["error"].is_string())
+            } else {
+                status("drawn").is_some_and(|st| st == "computed" || st == "cached")
+            };
+            let other_ok = status("other").is_some_and(|st| st == "computed" || st == "cached");
+            if !drawn_ok || !other_ok {
+                bad.push(format!("run {run}: {changed} -> exit {code}, report {tasks:?}"));
+            }
+        }
+    }
+    eprintln!("outcomes by exit code: {outcomes:?}");
+    assert!(bad.is_empty(), "{} runs ended badly:\n{}", bad.len(), bad.join("\n"));
+    assert!(outcomes.get(&0).copied().unwrap_or(0) > 3 && outcomes.get(&2).copied().unwrap_or(0) > 3, "{outcomes:?}");
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    assert!(largest_child_bytes() < 4e9, "a run allocated past the memory allowed");
 }

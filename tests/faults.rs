@@ -145,3 +145,31 @@ fn a_read_only_cache_is_a_clear_error_and_is_left_untouched() {
     disk.remount("rw");
     assert_eq!(snapshot(&s.path("cache")), before, "nothing in the cache changed");
 }
+
+#[test]
+fn a_cache_disk_full_before_the_run_still_gives_a_run_report_and_the_report_names_its_file() {
+    let yaml = sleep_pipeline("[1, 2]", 0, "t");
+    let s = Scratch::new("full-start");
+    s.write("p.yaml", &yaml);
+    let Some(disk) = Mount::tmpfs(&s.path("cache"), "48k") else { return };
+    // The disk full before the run opens the cache: it stopped at its `lock.info` with no
+    // report; now each task that cannot store its entry is recorded, and the report is
+    // written beside.
+    // As much as fits: the write stops at the full disk.
+    let _ = std::fs::write(s.path("cache/fill"), "x".repeat(64 * 1024));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("No space left on device"), "{err}");
+    assert!(r.0.is_object(), "a run report is written: {err}");
+    let failed: Vec<_> = r.tasks().into_iter().filter(|t| t["status"] == "failed").collect();
+    assert!(!failed.is_empty(), "{err}");
+    assert!(failed.iter().all(|t| t["error"].as_str().unwrap().contains("No space left on device")));
+    drop(disk);
+    // A report on a full disk is named, with the cause.
+    let Some(_full) = Mount::tmpfs(&s.path("full"), "16k") else { return };
+    let _ = std::fs::write(s.path("full/fill"), "x".repeat(64 * 1024));
+    let out = s.repro(&["run", "p.yaml", "-q", "--report", "full/r.json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("writing the run report full/r.json: No space left on device"), "{err}");
+}

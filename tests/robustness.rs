@@ -458,3 +458,35 @@ fn a_shell_cycle_that_no_memory_holds_is_refused_before_it_allocates() {
     let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
     assert_eq!(small["status"], "computed");
 }
+
+#[test]
+fn a_directory_in_place_of_the_lock_is_moved_aside_and_a_file_in_place_of_the_figures_folder_is_named() {
+    // The lock replaced by a directory failed every run as "the cache is not writable";
+    // now it is moved aside (kept) and the run goes on.
+    let s = Scratch::new("lock-dir");
+    s.write("p.yaml", &sleep_pipeline("[1, 2]", 0, "t"));
+    let (code, err, _) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    std::fs::remove_file(s.path("cache/lock")).unwrap();
+    std::fs::create_dir(s.path("cache/lock")).unwrap();
+    std::fs::write(s.path("cache/lock/keep"), "a user's file").unwrap();
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("cache/lock was a directory; moved aside to cache/lock.damaged-"), "{err}");
+    assert_eq!(r.count(None, "cached"), r.tasks().len(), "every entry still used");
+    let aside = std::fs::read_dir(s.path("cache")).unwrap().flatten().find(|e| {
+        e.file_name().to_string_lossy().starts_with("lock.damaged-")
+    });
+    assert!(aside.is_some_and(|e| e.path().join("keep").is_file()), "nothing deleted");
+    // A file where the figures folder should be: the error names both, the run goes on to
+    // publish the tables, and the file is left alone (outputs are the user's).
+    s.write("figs", "a user's file");
+    let (code, err, _) = s.run("p.yaml", &["--figures", "figs/sub"]);
+    assert_eq!(code, 4, "{err}");
+    assert!(
+        err.contains("publishing: cannot write figs/sub/fig.parquet: figs is a file, not a folder"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(s.path("figs")).unwrap(), "a user's file");
+    assert!(s.path("tables/sweep.parquet").is_file());
+}

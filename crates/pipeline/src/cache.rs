@@ -249,6 +249,8 @@ impl Cache {
     pub fn open(root: &Path, mode: LockMode) -> Result<Cache, OpenError> {
         fs::create_dir_all(root).with_context(|| format!("creating the cache directory {}", root.display()))?;
         let lock_path = root.join("lock");
+        // A directory or a fifo standing for the lock file would fail every run: moved aside.
+        move_aside_non_file(&lock_path, 0).with_context(|| format!("moving {} aside", lock_path.display()))?;
         let file =
             fs::OpenOptions::new().create(true).truncate(false).write(true).read(true).open(&lock_path).with_context(
                 || {
@@ -268,9 +270,13 @@ impl Cache {
         unlink_foreign_links(root);
         let cache = Cache { root: root.to_path_buf(), tmp: root.join("tmp"), _lock: Some(file), _dir_lock: Some(dir) };
         // Written like every other file: a rename replaces whatever stands there, a link
-        // included, without writing through it.
-        write_atomic(&root.join("lock.info"), format!("pid {}", std::process::id()).as_bytes(), &cache.tmp_dir())
-            .with_context(|| format!("writing {}", root.join("lock.info").display()))?;
+        // included, without writing through it. It only tells a waiting run who holds the
+        // lock: a full disk fails the entries the run stores, each recorded, not the run.
+        if let Err(e) =
+            write_atomic(&root.join("lock.info"), format!("pid {}", std::process::id()).as_bytes(), &cache.tmp_dir())
+        {
+            eprintln!("repro: warning: {e:#}");
+        }
         // Files left in tmp/ by a killed run are incomplete: nobody else can be writing them.
         let _ = fs::remove_dir_all(cache.tmp_dir());
         fs::create_dir_all(cache.tmp_dir()).with_context(|| format!("creating {}", cache.tmp_dir().display()))?;

@@ -47,7 +47,19 @@ fn publish_file(path: &Path, bytes: &[u8]) -> Result<bool> {
         return Ok(false);
     }
     let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
+    if let Err(e) = std::fs::create_dir_all(dir) {
+        // A user's file where the folder should be is reported, never moved: outputs are
+        // theirs.
+        let blocker = dir.ancestors().find(|a| std::fs::metadata(a).is_ok_and(|m| !m.is_dir()));
+        return Err(match blocker {
+            Some(b) => anyhow::anyhow!(
+                "cannot write {}: {} is a file, not a folder (move it, or publish elsewhere with --figures or --tables)",
+                path.display(),
+                b.display()
+            ),
+            None => anyhow::Error::new(e).context(format!("creating {} for {}", dir.display(), path.display())),
+        });
+    }
     crate::cache::write_atomic(path, bytes, dir)?;
     Ok(true)
 }
