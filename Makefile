@@ -99,7 +99,7 @@ bench-gamma-c:
 # "Cost").
 CHAPTER3 = shell_mesh shell_indent shell_profile shell_indent_adhesive shell_indent_adhesive_energy \
 	shell_gamma shell_mu buckling_vs_mu buckling_vs_gamma exp_rough exp_moderate exp_smooth \
-	exp_rough_energy exp_moderate_energy exp_smooth_energy imperfection_apex \
+	imperfection_apex \
 	imperfection_dimple imperfection_perfect shell_material shell_material_svk shell_material_hencky \
 	gamma_c buckling_limit gamma_c_map
 bench-chapter3: build

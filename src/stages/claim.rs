@@ -74,6 +74,11 @@ pub struct Quantity {
     /// one row, e.g. an estimate over the computed value).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub over: Option<String>,
+    /// The error estimate of `y` (a column of the same table): `increasing` and `decreasing`
+    /// then judge within it (no step back larger than the two points' errors together, and
+    /// an overall change larger than the ends' errors).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_error: Option<String>,
     /// The abscissa of `argmax`, `argmin`, `slope`, `increasing`, `decreasing`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<String>,
@@ -105,6 +110,9 @@ impl Quantity {
         let mut s = format!("{} of {}.{}", aggregate.unwrap_or_default(), self.from, self.column());
         if let Some(x) = &self.x {
             s.push_str(&format!(" against {x}"));
+        }
+        if let Some(e) = &self.y_error {
+            s.push_str(&format!(" within {e}"));
         }
         if !self.filter.is_empty() {
             let kept: Vec<String> = self
@@ -262,8 +270,9 @@ pub struct ClaimParams {
     pub docs: String,
 }
 
-/// The rows of `q.from` kept by the filter and the x range, as (x, y) (x = 0 without `x`).
-fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64)>> {
+/// The rows of `q.from` kept by the filter and the x range, as (x, y, error of y) (x = 0
+/// without `x`, the error 0 without `y_error`).
+fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64, f64)>> {
     let t = inputs.table(&q.from)?;
     let n = t.n_rows();
     let mut ys = if q.aggregate == Aggregate::Count { vec![0.0; n] } else { t.f64_column(&q.y)? };
@@ -275,6 +284,10 @@ fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64)>> {
     }
     let xs = match &q.x {
         Some(x) => t.f64_column(x).with_context(|| format!("x `{x}`"))?,
+        None => vec![0.0; n],
+    };
+    let es = match &q.y_error {
+        Some(e) => t.f64_column(e).with_context(|| format!("y_error `{e}`"))?,
         None => vec![0.0; n],
     };
     // Per filter, whether each row passes.
@@ -296,7 +309,7 @@ fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64)>> {
     Ok((0..n)
         .filter(|&i| passes.iter().all(|p| p[i]))
         .filter(|&i| q.x_min.is_none_or(|a| xs[i] >= a) && q.x_max.is_none_or(|b| xs[i] <= b))
-        .map(|i| (xs[i], ys[i]))
+        .map(|i| (xs[i], ys[i], es[i]))
         .collect::<Vec<_>>())
         .and_then(|rows| match rows.iter().find(|r| !r.1.is_finite()) {
             Some(r) => bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0),
@@ -311,8 +324,9 @@ pub fn measure(q: &Quantity, inputs: &Inputs) -> Result<f64> {
         bail!("no row of `{}` passes the filter {:?}", q.from, q.filter);
     }
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let by_y = |a: &&(f64, f64), b: &&(f64, f64)| a.1.total_cmp(&b.1);
+    let by_y = |a: &&(f64, f64, f64), b: &&(f64, f64, f64)| a.1.total_cmp(&b.1);
     let ys = rows.iter().map(|r| r.1);
+    let pairs: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.1)).collect();
     Ok(match q.aggregate {
         Aggregate::Value => {
             if rows.len() != 1 {
@@ -326,15 +340,15 @@ pub fn measure(q: &Quantity, inputs: &Inputs) -> Result<f64> {
         Aggregate::Argmax => rows.iter().max_by(by_y).unwrap().0,
         Aggregate::Argmin => rows.iter().min_by(by_y).unwrap().0,
         Aggregate::Slope => {
-            let Some(f) = power_law(&rows) else {
+            let Some(f) = power_law(&pairs) else {
                 bail!("fewer than 3 positive points of `{}` to fit a slope", q.from)
             };
             f.slope
         }
-        Aggregate::Increasing => f64::from(u8::from(rows.windows(2).all(|w| w[1].1 > w[0].1))),
-        Aggregate::Decreasing => f64::from(u8::from(rows.windows(2).all(|w| w[1].1 < w[0].1))),
+        Aggregate::Increasing => f64::from(u8::from(monotone(&rows, 1.0))),
+        Aggregate::Decreasing => f64::from(u8::from(monotone(&rows, -1.0))),
         Aggregate::Count => rows.len() as f64,
-        Aggregate::Linearity => linear_r_squared(&rows)
+        Aggregate::Linearity => linear_r_squared(&pairs)
             .with_context(|| format!("`linearity` of `{}` needs at least 3 rows and a y that varies", q.from))?,
         Aggregate::MaxOverMin => {
             let (lo, hi) = rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(r.1), b.max(r.1)));
@@ -351,6 +365,15 @@ pub fn measure(q: &Quantity, inputs: &Inputs) -> Result<f64> {
             last / first
         }
     })
+}
+
+/// Whether y rises (`sign` 1) or falls (-1) with x over the rows (x, y, error), sorted by
+/// x: strictly where the errors are 0; else no step the other way larger than the two
+/// points' errors together, and a change from the first to the last larger than theirs.
+fn monotone(rows: &[(f64, f64, f64)], sign: f64) -> bool {
+    let steps = rows.windows(2).all(|w| sign * (w[1].1 - w[0].1) > -(w[0].2 + w[1].2));
+    let (first, last) = (rows[0], rows[rows.len() - 1]);
+    steps && (rows.len() < 2 || sign * (last.1 - first.1) > first.2 + last.2)
 }
 
 pub struct Claim;
@@ -413,6 +436,7 @@ impl Kind for Claim {
             reads.push(read("quantity.y".into(), &q.y));
         }
         reads.extend(q.over.iter().map(|d| read("quantity.over".into(), d)));
+        reads.extend(q.y_error.iter().map(|e| read("quantity.y_error".into(), e)));
         reads.extend(q.x.iter().map(|x| read("quantity.x".into(), x)));
         reads.extend(q.filter.keys().map(|k| read(format!("quantity.filter.{k}"), k)));
         reads
@@ -535,4 +559,25 @@ impl Kind for Claims {
 pub fn register(r: &mut Registry) {
     r.add::<Claim>();
     r.add::<Claims>();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::monotone;
+
+    #[test]
+    fn monotonicity_is_judged_within_the_error_estimates() {
+        // Fig. 3.6b's shape: a step back of 0.01 at the snap's location error (0.04 each).
+        let dip = [(0.0, 7.70, 0.04), (1.0, 7.94, 0.04), (2.0, 7.93, 0.04), (3.0, 12.0, 0.06)];
+        assert!(monotone(&dip, 1.0));
+        // Without errors, strictly: the same step back breaks it.
+        let strict: Vec<_> = dip.iter().map(|r| (r.0, r.1, 0.0)).collect();
+        assert!(!monotone(&strict, 1.0));
+        // A step back larger than the two errors together breaks it too (0.14 > 0.08).
+        assert!(!monotone(&[(0.0, 7.70, 0.04), (1.0, 7.94, 0.04), (2.0, 7.80, 0.04), (3.0, 12.0, 0.06)], 1.0));
+        // A change within the ends' errors is no rise.
+        assert!(!monotone(&[(0.0, 1.0, 0.1), (1.0, 1.05, 0.1)], 1.0));
+        assert!(monotone(&[(0.0, 3.0, 0.0), (1.0, 2.0, 0.0)], -1.0));
+        assert!(!monotone(&[(0.0, 3.0, 0.0), (1.0, 2.0, 0.0)], 1.0));
+    }
 }

@@ -48,6 +48,10 @@ pub enum SnapCriterion {
     /// state stores less total potential energy than the adhered flattened one at some
     /// delta up to delta_max, or the flattened branch ends.
     Energy,
+    /// The energy balance with the work friction does as the contact slides to the
+    /// inverted state (`fem::cycle::ShellProblem::friction_work`): the inverted state must
+    /// lie lower by that work.
+    EnergyFriction,
 }
 
 /// The settings of the thesis' staggered procedure (`SnapCriterion::Thesis`).
@@ -82,7 +86,8 @@ impl From<SnapCriterion> for Snap {
         match c {
             SnapCriterion::Instability => Snap::Instability,
             SnapCriterion::Landing => Snap::Landing,
-            SnapCriterion::Energy => Snap::Energy,
+            SnapCriterion::Energy => Snap::Energy { friction: false },
+            SnapCriterion::EnergyFriction => Snap::Energy { friction: true },
             SnapCriterion::Thesis(t) => Snap::Staggered(Staggered {
                 passes: t.passes.map_or(Passes::Converged, Passes::Fixed),
                 first: match t.first_pass {

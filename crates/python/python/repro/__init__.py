@@ -401,7 +401,7 @@ class Run:
 
     @property
     def verdict(self) -> Optional[str]:
-        """The claims' verdict line (``"45 of 65 thesis claims reproduced, ..."``), when the
+        """The claims' verdict line (``"47 of 65 thesis claims reproduced, ..."``), when the
         run checked claims."""
         return next((n for n in self.notes if " thesis claims reproduced" in n), None)
 

@@ -40,6 +40,11 @@ fn crossing(delta_stable: f64, at: &Step, inv: &Step) -> Jump {
     }
 }
 
+/// Whether the criterion `snap` weighs the friction work of the jump (`Snap::Energy`).
+fn friction(snap: Snap) -> bool {
+    matches!(snap, Snap::Energy { friction: true })
+}
+
 impl ShellProblem<'_> {
     /// The total potential energy Pi of the state `s` (module doc); None if an element is
     /// inverted.
@@ -53,13 +58,35 @@ impl ShellProblem<'_> {
         self.plate.adhesive_energy(&self.model.mesh, &s.u, apex_z(self.model) - s.delta)
     }
 
+    /// The work Coulomb friction does as the contact slides from the flattened state `flat`
+    /// to the inverted state `inv` at the same delta: per outer node, mu times its mean
+    /// contact pressure over the two states, its tributary area and its radial slip
+    /// |r_inv - r_flat| (the plate is flat: the slip is radial). The path between the two
+    /// is not traced; the mean pressure takes it straight. Zero without friction.
+    pub fn friction_work(&self, flat: &Step, inv: &Step) -> f64 {
+        let Some(friction) = self.plate.friction else { return 0.0 };
+        let mesh = &self.model.mesh;
+        let pressure = |s: &Step, k: usize| s.contact.pressure.get(k).copied().unwrap_or(0.0);
+        mesh.outer
+            .iter()
+            .enumerate()
+            .map(|(k, &a)| {
+                let slip = (inv.u[2 * a] - flat.u[2 * a]).abs();
+                friction.mu * 0.5 * (pressure(flat, k) + pressure(inv, k)) * self.plate.weights[k] * slip
+            })
+            .sum()
+    }
+
     /// The inverted state at the delta of the flattened state `flat`, and the balance of
-    /// the two; none if no inverted state is found there.
-    pub(super) fn balance(&self, flat: &Step) -> Option<(Step, Balance)> {
+    /// the two (with the friction work of the way if `friction`); none if no inverted state
+    /// is found there.
+    pub(super) fn balance(&self, flat: &Step, friction: bool) -> Option<(Step, Balance)> {
         let inv = self.jump_to_inverted(flat)?;
+        let friction_work = if friction { self.friction_work(flat, &inv) } else { 0.0 };
         let balance = Balance {
             delta: flat.delta,
-            inverted_less_flat: self.total_energy(&inv)? - self.total_energy(flat)?,
+            inverted_less_flat: self.total_energy(&inv)? - self.total_energy(flat)? + friction_work,
+            friction_work,
             adhesive_flat: self.adhesive_energy(flat),
             adhesive_inverted: self.adhesive_energy(&inv),
         };
@@ -67,9 +94,9 @@ impl ShellProblem<'_> {
     }
 
     /// The inverted state at the delta of the flattened state `flat`, if it lies lower in
-    /// Pi than `flat`.
-    fn lower_inverted(&self, flat: &Step) -> Option<Step> {
-        self.balance(flat).and_then(|(inv, b)| (b.inverted_less_flat < 0.0).then_some(inv))
+    /// Pi (by the friction work too if `friction`) than `flat`.
+    fn lower_inverted(&self, flat: &Step, friction: bool) -> Option<Step> {
+        self.balance(flat, friction).and_then(|(inv, b)| (b.inverted_less_flat < 0.0).then_some(inv))
     }
 
     /// The first of the flattened states `flat` (indices into `points`, in order) whose
@@ -77,13 +104,13 @@ impl ShellProblem<'_> {
     /// the states (Pi_flat - Pi_inv rises with delta). That state's index, its inverted
     /// state, and the jump there; the state before the first of `flat` is the adhering
     /// start.
-    fn first_lower(&self, points: &[CyclePoint], flat: &[usize], mut inv: Step) -> (usize, Step, Jump) {
+    fn first_lower(&self, points: &[CyclePoint], flat: &[usize], mut inv: Step, friction: bool) -> (usize, Step, Jump) {
         // `hi` is such a state, every state before `lo` (an index one past the last known
         // not to be) is not.
         let (mut lo, mut hi) = (0usize, flat.len() - 1);
         while lo < hi {
             let mid = (lo + hi) / 2;
-            match self.lower_inverted(&points[flat[mid]].step) {
+            match self.lower_inverted(&points[flat[mid]].step, friction) {
                 Some(i) => {
                     hi = mid;
                     inv = i;
@@ -101,20 +128,28 @@ impl ShellProblem<'_> {
     /// lower, and `hi`, whose inverted neighbour `inv` is, `opt.bisections` times (fewer if a
     /// solve fails or leaves the branch): the crossing located to the bracket / 2^bisections.
     /// The bracket's ends and the inverted state at its upper end.
-    fn refine_crossing(&self, mut lo: Step, mut hi: Step, mut inv: Step, opt: CycleOptions) -> (Step, Step, Step) {
+    fn refine_crossing(
+        &self,
+        mut lo: Step,
+        mut hi: Step,
+        mut inv: Step,
+        opt: CycleOptions,
+        friction: bool,
+    ) -> (Step, Step, Step) {
         for _ in 0..opt.bisections {
             let mut mid = self.solve_from(0.5 * (lo.delta + hi.delta), &lo, Options::default());
             mid.stable = mid.converged && self.is_stable(&mid, opt.criterion, opt.hold);
             if !mid.stable {
                 break;
             }
-            match self.balance(&mid) {
+            match self.balance(&mid, friction) {
                 Some((i, b)) if b.inverted_less_flat < 0.0 => {
                     hi = mid;
                     inv = i;
                 }
-                Some(_) => lo = mid,
-                None => break,
+                // No inverted state at mid (the inverted branch begins past it): no snap
+                // there either.
+                Some(_) | None => lo = mid,
             }
         }
         (lo, hi, inv)
@@ -136,12 +171,12 @@ impl ShellProblem<'_> {
             .filter(|&i| cycle.points[i].step.converged && cycle.points[i].step.delta > 0.0)
             .collect();
         let Some(&last) = flat.last() else { return cycle };
-        let Some((inv, balance)) = self.balance(&cycle.points[last].step) else { return cycle };
+        let Some((inv, balance)) = self.balance(&cycle.points[last].step, friction(opt.snap)) else { return cycle };
         cycle.balance = Some(balance);
         if balance.inverted_less_flat >= 0.0 {
             return cycle;
         }
-        let (at, _, jump) = self.first_lower(&cycle.points, &flat, inv);
+        let (at, _, jump) = self.first_lower(&cycle.points, &flat, inv, friction(opt.snap));
         cycle.buckling = Some(jump);
         cycle.points.truncate(at + 1);
         cycle.work_loading = super::work(&cycle.points);
@@ -166,14 +201,14 @@ impl ShellProblem<'_> {
                     p.step.converged && !p.inverted && p.step.delta > 0.0 && p.step.delta <= end
                 })
                 .collect();
-            let lower = flat.last().and_then(|&last| self.balance(&loading.points[last].step));
+            let lower = flat.last().and_then(|&last| self.balance(&loading.points[last].step, friction(opt.snap)));
             if let Some((inv, _)) = lower.filter(|(_, b)| b.inverted_less_flat < 0.0) {
-                let (at, inv, _) = self.first_lower(&loading.points, &flat, inv);
+                let (at, inv, _) = self.first_lower(&loading.points, &flat, inv, friction(opt.snap));
                 let mut points = loading.points;
                 let at = points[at].step.clone();
                 points.truncate(points.iter().position(|p| p.step.delta >= at.delta).unwrap_or(points.len()));
                 let before = points.last().expect("the start precedes every loaded state").step.clone();
-                let (lo, hi, mut inv) = self.refine_crossing(before.clone(), at, inv, local);
+                let (lo, hi, mut inv) = self.refine_crossing(before.clone(), at, inv, local, friction(opt.snap));
                 let flat = |step: Step| CyclePoint { step, leg: Leg::Loading, inverted: false };
                 if lo.delta > before.delta {
                     points.push(flat(lo.clone()));

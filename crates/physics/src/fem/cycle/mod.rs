@@ -81,8 +81,11 @@ pub enum Snap {
     Staggered(Staggered),
     /// The energy balance (`energy`): the snap where the inverted state lies lower in total
     /// potential energy than the adhered flattened one, or where the flattened branch ends.
-    /// A cycle that unloads jumps there and comes back as under `Instability`.
-    Energy,
+    /// A cycle that unloads jumps there and comes back as under `Instability`. With
+    /// `friction`, the inverted state must lie lower by the work friction does on the way
+    /// (`ShellProblem::friction_work`): the energetic criterion of a rate-independent
+    /// dissipative system.
+    Energy { friction: bool },
 }
 
 impl Snap {
@@ -150,12 +153,14 @@ pub struct Cycle {
 }
 
 /// The energy criterion's comparison at one plate displacement (`Snap::Energy`): the total
-/// potential energy Pi of the inverted state less the flattened one's (> 0: the flattened
-/// state is the lower, no snap there), and the adhesive energies of both (<= 0).
+/// potential energy Pi of the inverted state less the flattened one's, plus the friction
+/// work of the way between them where the criterion counts it (> 0: the flattened state
+/// holds, no snap there), that friction work, and the adhesive energies of both (<= 0).
 #[derive(Clone, Copy, Debug)]
 pub struct Balance {
     pub delta: f64,
     pub inverted_less_flat: f64,
+    pub friction_work: f64,
     pub adhesive_flat: f64,
     pub adhesive_inverted: f64,
 }
@@ -256,7 +261,7 @@ impl ShellProblem<'_> {
     /// the options end the cycle there, the unloading leg with its snap-back
     /// (`unloading`).
     pub fn load_unload(&self, opt: CycleOptions) -> Cycle {
-        if opt.snap == Snap::Energy {
+        if let Snap::Energy { .. } = opt.snap {
             return if opt.unload && !opt.stop_at_buckling { self.energy_cycle(opt) } else { self.energy_loading(opt) };
         }
         if let Snap::Staggered(procedure) = opt.snap {

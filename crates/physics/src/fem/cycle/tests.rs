@@ -411,7 +411,7 @@ fn the_energy_criterion_snaps_below_the_first_order_balance_and_not_above() {
     // snaps below it and not above, at each range.
     let (model, plate) = thesis_shell();
     let problem = ShellProblem::new(&model, &plate, E);
-    let opt = snap_probe(Snap::Energy);
+    let opt = snap_probe(Snap::Energy { friction: false });
     let path = crate::fem::indent::load_path(&model, &plate, E, 0.3 * R, 30, 6);
     let flat = path.last().unwrap();
     assert!(flat.converged && (flat.delta - 0.3 * R).abs() < 1e-9);
@@ -466,7 +466,7 @@ fn the_energy_cycle_snaps_where_the_balance_crosses_and_comes_back() {
     // states up to the energy's snap, which lies within 2 % of the local one.
     let problem = ShellProblem::new(&model, &plate, E);
     let local = problem.load_unload(cycle_opt(Snap::Instability));
-    let energy = problem.load_unload(cycle_opt(Snap::Energy));
+    let energy = problem.load_unload(cycle_opt(Snap::Energy { friction: false }));
     assert!(local.is_closed() && energy.is_closed());
     let (l, e) = (local.buckling.unwrap(), energy.buckling.unwrap());
     assert!(e.delta <= l.delta && e.delta > 0.98 * l.delta, "{e:?} {l:?}");
@@ -486,17 +486,52 @@ fn the_energy_cycle_snaps_where_the_balance_crosses_and_comes_back() {
     let adhering = plate.clone().with_adhesion(1e-3 * E * H, 0.1);
     let problem = ShellProblem::new(&model, &adhering, E);
     assert!(problem.load_unload(snap_probe(Snap::Instability)).buckling.is_none(), "no local snap");
-    let c = problem.load_unload(cycle_opt(Snap::Energy));
+    let c = problem.load_unload(cycle_opt(Snap::Energy { friction: false }));
     assert!(c.is_closed(), "{:?}", c.buckling);
     let b = c.buckling.expect("an energy snap");
     let step = 0.3 * R / 30.0;
     assert!(b.delta > 0.05 * R && b.delta < 0.3 * R && b.delta - b.delta_stable <= step / 64.0 * (1.0 + 1e-9), "{b:?}");
     let state = |d: f64| c.points.iter().find(|p| p.leg == Leg::Loading && p.step.delta == d && !p.inverted).unwrap();
     let (before, at) = (&state(b.delta_stable).step, &state(b.delta).step);
-    assert!(problem.balance(before).is_some_and(|(_, x)| x.inverted_less_flat >= 0.0));
-    assert!(problem.balance(at).is_some_and(|(_, x)| x.inverted_less_flat < 0.0));
+    assert!(problem.balance(before, false).is_some_and(|(_, x)| x.inverted_less_flat >= 0.0));
+    assert!(problem.balance(at, false).is_some_and(|(_, x)| x.inverted_less_flat < 0.0));
     assert!(b.force_after < b.force_before, "{b:?}");
     let after: Vec<_> = c.points.iter().filter(|p| p.leg == Leg::Loading && p.step.delta > b.delta).collect();
     assert!(!after.is_empty() && after.iter().all(|p| p.inverted));
     assert!(c.snap_back.is_some() && c.dissipated() > 0.0, "{:?} {}", c.snap_back, c.dissipated());
+}
+
+#[test]
+fn the_friction_work_delays_the_energy_snap_and_vanishes_without_friction() {
+    // The energy criterion with friction asks the inverted state to lie lower than the
+    // flattened one by the work Coulomb friction does as the contact slides there
+    // (`ShellProblem::friction_work`: mu times each outer node's mean pressure over the two
+    // states, its tributary area and its radial slip). On the test shell with the thesis'
+    // imperfection and gamma = 1e-3 E h (an energy snap, no local one):
+    let (model, plate) = thesis_shell();
+    let model = model.with_apex_force(0.05 * E * H.powi(3) / R);
+    let adhering = plate.with_adhesion(1e-3 * E * H, 0.1);
+    let snap = |p: &Plate, friction: bool| {
+        ShellProblem::new(&model, p, E).load_unload(snap_probe(Snap::Energy { friction })).buckling
+    };
+    // without friction the work is nil and both criteria snap at the same state;
+    let stored = snap(&adhering, false).expect("an energy snap");
+    assert_eq!(snap(&adhering, true).map(|b| b.delta), Some(stored.delta));
+    // the work is linear in mu and positive between the flattened state at that snap and
+    // its inverted neighbour;
+    let problem = ShellProblem::new(&model, &adhering, E);
+    let cycle = problem.load_unload(snap_probe(Snap::Energy { friction: false }));
+    let flat = &cycle.points.iter().find(|p| p.step.delta == stored.delta && !p.inverted).unwrap().step;
+    let inv = problem.jump_to_inverted(flat).expect("an inverted state");
+    let work = |mu: f64| {
+        let rough = adhering.clone().with_friction(mu);
+        ShellProblem::new(&model, &rough, E).friction_work(flat, &inv)
+    };
+    assert_eq!(work(0.0), 0.0);
+    assert!(work(0.5) > 0.0 && (work(1.0) / work(0.5) - 2.0).abs() < 1e-12, "{} {}", work(0.5), work(1.0));
+    // with mu = 1 the snap that counts the work comes later than the one that does not, or
+    // not before delta_max.
+    let rough = adhering.clone().with_friction(1.0);
+    let blind = snap(&rough, false).expect("a snap blind to friction");
+    assert!(snap(&rough, true).is_none_or(|b| b.delta > blind.delta), "{blind:?}");
 }
