@@ -68,7 +68,7 @@ pub enum CliError {
 
 impl From<UsageError> for CliError {
     fn from(e: UsageError) -> Self {
-        CliError::Usage(e.0)
+        CliError::Usage(e.to_string())
     }
 }
 
@@ -130,7 +130,7 @@ mod tests {
     fn each_kind_of_error_has_its_exit_code() {
         let invalid = CliError::from(InvalidPipeline(Vec::new()));
         let busy = CliError::from(RunError::CacheBusy(CacheBusy { dir: "c".into(), holder: "pid 1".into() }));
-        let usage = CliError::from(RunError::Usage(UsageError("--target x".into())));
+        let usage = CliError::from(RunError::Usage(UsageError::UnknownStage("--target x".into())));
         let io = CliError::from(std::io::Error::other("disk full"));
         let failed = CliError::from(repro::pipeline::task::TaskError::TimedOut { limit_s: 1.0 });
         let codes: Vec<u8> = [invalid, usage, busy, io, failed].iter().map(|e| e.exit().code()).collect();

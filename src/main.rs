@@ -183,7 +183,7 @@ fn worker_command(args: cli::WorkerArgs, registry: &Registry) -> Result<Exit, Cl
         None => std::env::var("SLURM_ARRAY_TASK_ID")
             .ok()
             .and_then(|v| v.parse().ok())
-            .ok_or_else(|| UsageError("worker: give --index or run inside a SLURM array".into()))?,
+            .ok_or_else(|| UsageError::Argument("worker: give --index or run inside a SLURM array".into()))?,
     };
     let ok = repro::pipeline::slurm::work(registry, &cache.cache, &list, index)?;
     Ok(if ok { Exit::Success } else { Exit::FailedTasks })
@@ -364,7 +364,7 @@ fn point_command(args: cli::PointArgs, registry: &Registry) -> Result<Exit, CliE
         yaml.push_str(&format!("{name}: {value}\n"));
     }
     let node = marked_yaml::parse_yaml(0, if yaml.is_empty() { "{}" } else { &yaml })
-        .map_err(|e| UsageError(format!("parameters: {e}")))?;
+        .map_err(|e| UsageError::Argument(format!("parameters: {e}")))?;
     let out = repro::point::compute(registry, &kind, &parse::to_json(&node), time_limit).map_err(|e| match e {
         PointError::Failed(failed) => CliError::TaskFailed(failed),
         invalid => CliError::usage(invalid.to_string()),

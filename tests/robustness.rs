@@ -474,19 +474,17 @@ fn a_directory_in_place_of_the_lock_is_moved_aside_and_a_file_in_place_of_the_fi
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("cache/lock was a directory; moved aside to cache/lock.damaged-"), "{err}");
     assert_eq!(r.count(None, "cached"), r.tasks().len(), "every entry still used");
-    let aside = std::fs::read_dir(s.path("cache")).unwrap().flatten().find(|e| {
-        e.file_name().to_string_lossy().starts_with("lock.damaged-")
-    });
+    let aside = std::fs::read_dir(s.path("cache"))
+        .unwrap()
+        .flatten()
+        .find(|e| e.file_name().to_string_lossy().starts_with("lock.damaged-"));
     assert!(aside.is_some_and(|e| e.path().join("keep").is_file()), "nothing deleted");
     // A file where the figures folder should be: the error names both, the run goes on to
     // publish the tables, and the file is left alone (outputs are the user's).
     s.write("figs", "a user's file");
     let (code, err, _) = s.run("p.yaml", &["--figures", "figs/sub"]);
     assert_eq!(code, 4, "{err}");
-    assert!(
-        err.contains("publishing: cannot write figs/sub/fig.parquet: figs is a file, not a folder"),
-        "{err}"
-    );
+    assert!(err.contains("publishing: cannot write figs/sub/fig.parquet: figs is a file, not a folder"), "{err}");
     assert_eq!(std::fs::read_to_string(s.path("figs")).unwrap(), "a user's file");
     assert!(s.path("tables/sweep.parquet").is_file());
 }

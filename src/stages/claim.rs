@@ -311,10 +311,10 @@ fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64, f64)>> {
         .filter(|&i| q.x_min.is_none_or(|a| xs[i] >= a) && q.x_max.is_none_or(|b| xs[i] <= b))
         .map(|i| (xs[i], ys[i], es[i]))
         .collect::<Vec<_>>())
-        .and_then(|rows| match rows.iter().find(|r| !r.1.is_finite()) {
-            Some(r) => bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0),
-            None => Ok(rows),
-        })
+    .and_then(|rows| match rows.iter().find(|r| !r.1.is_finite()) {
+        Some(r) => bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0),
+        None => Ok(rows),
+    })
 }
 
 /// The quantity's value.

@@ -76,7 +76,7 @@ impl Material<'_> {
             if p.is_empty() || p.len() > 200 {
                 errs.push(FieldError::new("prony", format!("needs 1 to 200 [weight, time] terms, got {}", p.len())));
             } else if let Err(m) = Spectrum::retardation(&pairs(p)) {
-                errs.push(FieldError::new("prony", m));
+                errs.push(FieldError::new("prony", m.to_string()));
             }
         }
     }

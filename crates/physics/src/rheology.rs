@@ -28,6 +28,23 @@
 use rustfft::num_complex::Complex64;
 use std::sync::Arc;
 
+/// Why a spectrum cannot be built from the values given.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SpectrumError {
+    #[error("a spectrum needs at least one term")]
+    NoTerms,
+    #[error("term ({weight}, {time}): weights and times must be finite and positive")]
+    Term { weight: f64, time: f64 },
+    #[error("k = {0}: the modulus ratio must lie in (0, 1)")]
+    ModulusRatio(f64),
+    #[error("s = {0}: the power-law exponent must lie in [0, 1)")]
+    Exponent(f64),
+    #[error("t_min = {0}: tau1/tau2 must lie in (0, 1)")]
+    TimeRatio(f64),
+    #[error("per_decade must be at least 1")]
+    NoBins,
+}
+
 /// A normalised retardation spectrum: weights w_j > 0 (summing to 1) at times t_j > 0,
 /// sorted by time. Cheap to clone (shared).
 #[derive(Clone, Debug, PartialEq)]
@@ -48,13 +65,13 @@ impl Spectrum {
     }
 
     /// A retardation spectrum from (weight, time) pairs; the weights are normalised.
-    pub fn retardation(terms: &[(f64, f64)]) -> Result<Spectrum, String> {
+    pub fn retardation(terms: &[(f64, f64)]) -> Result<Spectrum, SpectrumError> {
         if terms.is_empty() {
-            return Err("a spectrum needs at least one term".into());
+            return Err(SpectrumError::NoTerms);
         }
         for &(w, t) in terms {
             if !(w.is_finite() && w > 0.0 && t.is_finite() && t > 0.0) {
-                return Err(format!("term ({w}, {t}): weights and times must be finite and positive"));
+                return Err(SpectrumError::Term { weight: w, time: t });
             }
         }
         let total: f64 = terms.iter().map(|t| t.0).sum();
@@ -65,9 +82,9 @@ impl Spectrum {
 
     /// The retardation spectrum of a Maxwell-Wiechert relaxation Prony series with
     /// (weight r_i, relaxation time rho_i) pairs (weights normalised) and modulus ratio k.
-    pub fn from_relaxation(k: f64, terms: &[(f64, f64)]) -> Result<Spectrum, String> {
+    pub fn from_relaxation(k: f64, terms: &[(f64, f64)]) -> Result<Spectrum, SpectrumError> {
         if !(k > 0.0 && k < 1.0) {
-            return Err(format!("k = {k}: the modulus ratio must lie in (0, 1)"));
+            return Err(SpectrumError::ModulusRatio(k));
         }
         let relax = Spectrum::retardation(terms)?; // validated, normalised, sorted by time
                                                    // Rates p_i = 1/rho_i, ascending.
@@ -103,15 +120,15 @@ impl Spectrum {
 
     /// The power-law spectrum of Eq. 5.24 on (t_min, 1) (times in units of tau2), exponent
     /// s in [0, 1), `per_decade` bins per decade (rounded up to cover the range).
-    pub fn power_law(s: f64, t_min: f64, per_decade: usize) -> Result<Spectrum, String> {
+    pub fn power_law(s: f64, t_min: f64, per_decade: usize) -> Result<Spectrum, SpectrumError> {
         if !(0.0..1.0).contains(&s) {
-            return Err(format!("s = {s}: the power-law exponent must lie in [0, 1)"));
+            return Err(SpectrumError::Exponent(s));
         }
         if !(t_min > 0.0 && t_min < 1.0) {
-            return Err(format!("t_min = {t_min}: tau1/tau2 must lie in (0, 1)"));
+            return Err(SpectrumError::TimeRatio(t_min));
         }
         if per_decade == 0 {
-            return Err("per_decade must be at least 1".into());
+            return Err(SpectrumError::NoBins);
         }
         let decades = -t_min.log10();
         let bins = (decades * per_decade as f64).ceil().max(1.0) as usize;

@@ -105,29 +105,40 @@ pub fn refine(axis: &AdaptiveAxis, samples: &[Sample]) -> Vec<f64> {
     out
 }
 
+/// Why adaptive sampling cannot place a stage's next points.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AdaptiveError {
+    #[error("adaptive sampling of `{param}` reads the column `{column}`, which the points' tables do not have (columns: {})", present.join(", "))]
+    MissingColumn { param: String, column: String, present: Vec<String> },
+    #[error("adaptive sampling of `{param}` needs one row per point; a point has {rows}")]
+    Rows { param: String, rows: usize },
+    #[error("adaptive sampling of `{param}`: the column `{column}` is not numeric")]
+    NotNumeric { param: String, column: String },
+    #[error("adaptive sampling: the point {label} has no numeric `{param}`")]
+    NoValue { param: String, label: String },
+    #[error("adaptive sampling: the new point {param}={value} is invalid: {errors}")]
+    InvalidPoint { param: String, value: f64, errors: String },
+}
+
 /// The y values of one point's output, if usable: one row, the columns present and
 /// finite, and not flagged as not converged. An error names a missing column.
-fn point_y(axis: &AdaptiveAxis, out: &Output) -> Result<Option<Vec<f64>>, String> {
+fn point_y(axis: &AdaptiveAxis, out: &Output) -> Result<Option<Vec<f64>>, AdaptiveError> {
     let t = &out.table;
     let mut y = Vec::with_capacity(axis.y.len());
     for name in &axis.y {
         let Some(col) = t.column(name) else {
-            return Err(format!(
-                "adaptive sampling of `{}` reads the column `{name}`, which the points' tables do not have (columns: {})",
-                axis.param,
-                t.column_names().join(", ")
-            ));
+            return Err(AdaptiveError::MissingColumn {
+                param: axis.param.clone(),
+                column: name.clone(),
+                present: t.column_names(),
+            });
         };
         if t.n_rows() != 1 {
-            return Err(format!(
-                "adaptive sampling of `{}` needs one row per point; a point has {}",
-                axis.param,
-                t.n_rows()
-            ));
+            return Err(AdaptiveError::Rows { param: axis.param.clone(), rows: t.n_rows() });
         }
         match col.f64_at(0) {
             Some(v) => y.push(v),
-            None => return Err(format!("adaptive sampling of `{}`: the column `{name}` is not numeric", axis.param)),
+            None => return Err(AdaptiveError::NotNumeric { param: axis.param.clone(), column: name.clone() }),
         }
     }
     let converged = t.column("converged").and_then(|c| c.f64_at(0)).is_none_or(|c| c != 0.0);
@@ -150,14 +161,14 @@ pub fn next_points(
     kind: &dyn DynKind,
     points: &[Point],
     outputs: &[&Output],
-) -> Result<Vec<Point>, String> {
+) -> Result<Vec<Point>, AdaptiveError> {
     let mut curves: BTreeMap<String, (usize, Vec<Sample>)> = BTreeMap::new();
     for (i, (p, o)) in points.iter().zip(outputs).enumerate() {
         let x = p
             .params
             .get(&axis.param)
             .and_then(Value::as_f64)
-            .ok_or_else(|| format!("adaptive sampling: the point {} has no numeric `{}`", p.label, axis.param))?;
+            .ok_or_else(|| AdaptiveError::NoValue { param: axis.param.clone(), label: p.label.clone() })?;
         let y = point_y(axis, o)?;
         curves.entry(curve_of(axis, &p.params)).or_insert((i, Vec::new())).1.push(Sample { t: axis.coord(x), y });
     }
@@ -172,7 +183,7 @@ pub fn next_points(
             value.as_object_mut().expect("params are a mapping").insert(axis.param.clone(), serde_json::json!(x));
             let (canonical, _) = kind.check(&value).map_err(|errors| {
                 let e: Vec<String> = errors.iter().map(|e| format!("{}: {}", e.path, e.message)).collect();
-                format!("adaptive sampling: the new point {}={} is invalid: {}", axis.param, x, e.join("; "))
+                AdaptiveError::InvalidPoint { param: axis.param.clone(), value: x, errors: e.join("; ") }
             })?;
             new.push(Point { params: canonical, label: relabel(&template.label, &axis.param, x) });
         }

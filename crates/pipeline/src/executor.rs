@@ -89,10 +89,18 @@ fn time_limit(stage: &Stage, kind: &dyn DynKind, opts: &RunOptions) -> std::time
     std::time::Duration::try_from_secs_f64(s).unwrap_or(std::time::Duration::MAX)
 }
 
-/// A command-line mistake (unknown target, ...): reported as invalid input.
+/// A command-line mistake: reported as invalid input.
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct UsageError(pub String);
+pub enum UsageError {
+    /// `--target` or `--force` names no stage of the pipeline (the message names the
+    /// nearest).
+    #[error("{0}")]
+    UnknownStage(String),
+    /// Another argument the command cannot use (a worker without its index, a point's
+    /// parameters that are no YAML).
+    #[error("{0}")]
+    Argument(String),
+}
 
 /// Why a run could not be carried out (failed tasks are not errors: the report records
 /// them).
@@ -200,12 +208,12 @@ fn selected_stages(p: &Pipeline, opts: &RunOptions) -> Result<BTreeSet<usize>, R
     for t in &opts.targets {
         match p.stages.iter().position(|s| &s.name == t) {
             Some(i) => target_idx.push(i),
-            None => return Err(UsageError(crate::parse::unknown_stage("--target", t, p)).into()),
+            None => return Err(UsageError::UnknownStage(crate::parse::unknown_stage("--target", t, p)).into()),
         }
     }
     for f in &opts.force {
         if p.stage(f).is_none() {
-            return Err(UsageError(crate::parse::unknown_stage("--force", f, p)).into());
+            return Err(UsageError::UnknownStage(crate::parse::unknown_stage("--force", f, p)).into());
         }
     }
     Ok(if target_idx.is_empty() { (0..p.stages.len()).collect() } else { graph::with_ancestors(p, &target_idx) })
@@ -531,7 +539,7 @@ impl<'a> RunState<'a> {
                 }
                 Err(e) => {
                     let mut r = TaskRecord::new(stage, &label, None, Status::Failed, None);
-                    r.error = Some(e);
+                    r.error = Some(e.to_string());
                     self.records.push(r);
                     plan.failed = true;
                 }

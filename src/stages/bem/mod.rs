@@ -14,6 +14,16 @@ use anyhow::Result;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+/// A point whose solver stopped before convergence: the task fails with the solver's own
+/// reason for stopping (`bem::solver::Termination`), not a table of an unconverged state.
+#[derive(Debug, thiserror::Error)]
+#[error("the point did not converge ({}: residual {residual:e} after {iterations} iterations)", termination.name())]
+pub struct NotConverged {
+    pub termination: crate::bem::solver::Termination,
+    pub residual: f64,
+    pub iterations: usize,
+}
+
 with_material_fields! {
 #[derive(Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -395,11 +405,8 @@ impl Kind for BemProfile {
         let t0 = std::time::Instant::now();
         let (s, estimate, _) = p.solve(inputs)?;
         if !s.converged {
-            anyhow::bail!(
-                "the point did not converge ({}: residual {:e} after {} iterations)",
-                s.termination.name(),
-                s.residual,
-                s.iterations
+            return Err(
+                NotConverged { termination: s.termination, residual: s.residual, iterations: s.iterations }.into()
             );
         }
         let two_a = 2.0 * s.mesh.a();
