@@ -66,7 +66,7 @@ fn point_error(py: Python<'_>, e: PointError) -> PyErr {
 
 fn run_error(py: Python<'_>, e: RunError) -> PyErr {
     match e {
-        RunError::Usage(u) => error(py, "UsageError", (u.0,)),
+        RunError::Usage(u) => error(py, "UsageError", (u.to_string(),)),
         RunError::CacheBusy(b) => error(py, "CacheBusy", (b.to_string(),)),
         RunError::Io(e) => error(py, "CacheError", (format!("{e:#}"),)),
     }

@@ -686,6 +686,9 @@ def point(
     /,
     *,
     raise_on_unconverged: bool = False,
+    apex_force: Optional[float] = ...,
+    dimple: Optional[float] = ...,
+    g0: Optional[float] = ...,
     gamma_max: float = ...,
     growth: float = ...,
     guess: float = ...,
@@ -698,6 +701,13 @@ def point(
     Eq. 3.7
 
     Parameters:
+        apex_force (number or null; default None, >= 0, sweepable): The apex force of the imperfection
+            in units of F_c = E h^3 / R (sweepable; default: `model.imperfection.apex_force`).
+        dimple (number or null; default None, sweepable): The dimple depth of the imperfection in units
+            of h (sweepable; default: `model.imperfection.dimple`).
+        g0 (number or null; default None, > 0, sweepable): The Lennard-Jones range g0 in mm (sweepable;
+            default: `model.g0`; the default mesh follows it), for studies of gamma_c's limit as the
+            regularisation goes.
         gamma_max (number; default 0.1, > 0):
         growth (number; default 2.0, > 1):
         guess (number; default 0.02, > 0): The first gamma/(E h) tried per unit of the adhesionless
@@ -717,6 +727,11 @@ def point(
     Columns:
         h_over_R [1]: thickness over inner radius
         mu [1]: Coulomb friction coefficient
+        g0 [mm]: equilibrium distance (range) g0 of the Lennard-Jones law (Eqs. 3.3-3.4); the default
+            mesh resolves it
+        apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
+        dimple [h]: imperfection: the depth of the apex dimple
+        n_meridian [count]: elements along the meridian
         gamma_c_over_Eh [1]: critical adhesion γ_c/(E h): above it no snap before δ_max (geometric mid
             of the bracket)
         gamma_lo_over_Eh [1]: the bracket's buckling end
@@ -2092,6 +2107,9 @@ def sweep(
     backend: str = 'pandas',
     raise_on_unconverged: bool = False,
     wait: bool = True,
+    apex_force: Sweep = ...,
+    dimple: Sweep = ...,
+    g0: Sweep = ...,
     gamma_max: float = ...,
     growth: float = ...,
     guess: float = ...,
@@ -2104,6 +2122,13 @@ def sweep(
     Eq. 3.7
 
     Parameters:
+        apex_force (number or null; default None, >= 0, sweepable): The apex force of the imperfection
+            in units of F_c = E h^3 / R (sweepable; default: `model.imperfection.apex_force`).
+        dimple (number or null; default None, sweepable): The dimple depth of the imperfection in units
+            of h (sweepable; default: `model.imperfection.dimple`).
+        g0 (number or null; default None, > 0, sweepable): The Lennard-Jones range g0 in mm (sweepable;
+            default: `model.g0`; the default mesh follows it), for studies of gamma_c's limit as the
+            regularisation goes.
         gamma_max (number; default 0.1, > 0):
         growth (number; default 2.0, > 1):
         guess (number; default 0.02, > 0): The first gamma/(E h) tried per unit of the adhesionless
@@ -2123,6 +2148,11 @@ def sweep(
     Columns:
         h_over_R [1]: thickness over inner radius
         mu [1]: Coulomb friction coefficient
+        g0 [mm]: equilibrium distance (range) g0 of the Lennard-Jones law (Eqs. 3.3-3.4); the default
+            mesh resolves it
+        apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
+        dimple [h]: imperfection: the depth of the apex dimple
+        n_meridian [count]: elements along the meridian
         gamma_c_over_Eh [1]: critical adhesion γ_c/(E h): above it no snap before δ_max (geometric mid
             of the bracket)
         gamma_lo_over_Eh [1]: the bracket's buckling end
