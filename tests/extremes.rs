@@ -179,7 +179,7 @@ fn extreme_parameters_end_every_point_with_an_answer() {
 /// parser and checks, the executor's guard, the cache and publishing. Each draw a file of
 /// its own, beside a stage that always computes (most draws are invalid input, which
 /// refuses the whole file, exit 2).
-const RUN_DRAWS: usize = 150;
+const RUN_DRAWS: usize = 300;
 
 #[test]
 fn extreme_parameters_in_a_pipeline_end_every_run_with_an_answer() {
