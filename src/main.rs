@@ -104,6 +104,7 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
         ExecutorArg::Local => Executor::Local,
         ExecutorArg::Slurm => Executor::Slurm(SlurmOptions { partition, max_jobs, retries, ..Default::default() }),
     };
+    let cache_dir = cache.cache.clone();
     let opts = RunOptions {
         cache_dir: cache.cache,
         figures_dir: figures,
@@ -152,6 +153,11 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
     for n in &rep.notes {
         eprintln!("{n}");
     }
+    if !dry_run {
+        if let Some(line) = partial_verdict(&p, &rep, &cache_dir) {
+            eprintln!("{line}");
+        }
+    }
     for r in &rep.regressions {
         eprintln!("repro: regression: {r}");
     }
@@ -167,6 +173,25 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
     } else {
         Exit::Success
     })
+}
+
+/// The verdict line of a run that reached some of the pipeline's claims but not the
+/// `claims` stage that prints it (a `--target` run): from the claim tasks' cached tables.
+fn partial_verdict(p: &Pipeline, rep: &report::RunReport, cache_dir: &Path) -> Option<String> {
+    use repro::pipeline::report::Status;
+    if rep.tasks.iter().any(|t| t.kind == "claims") {
+        return None;
+    }
+    let of_all = p.stages.iter().filter(|s| s.kind == "claim").count();
+    let store = repro::pipeline::cache::Cache::open_read_only(cache_dir);
+    let entries: Vec<_> = rep
+        .tasks
+        .iter()
+        .filter(|t| t.kind == "claim" && matches!(t.status, Status::Computed | Status::Cached))
+        .filter_map(|t| store.get(t.key.as_deref()?).ok())
+        .collect();
+    let tables: Vec<&repro::pipeline::table::Table> = entries.iter().map(|e| &e.output.table).collect();
+    repro::stages::claim::partial_verdict_line(&tables, of_all)
 }
 
 /// Writes the run report (`--report FILE`), naming the file if it cannot.

@@ -89,6 +89,22 @@ fn verdicts_are_counted_and_tabled() {
 }
 
 #[test]
+fn a_run_of_some_targets_gives_the_verdict_of_the_claims_it_reached() {
+    // `--target` short of the `claims` stage: the line counts the claims the run reached and
+    // says how many it did not run. Before, such a run printed no verdict at all.
+    let s = Scratch::new("claims-targets");
+    s.write("p.yaml", &pipeline(0.01, "reproduced"));
+    let (code, err, _) = s.run("p.yaml", &["--target", "c_jkr", "--target", "c_dmt"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("1 of 2 claims in scope reproduced, 1 differ (explained), 1 not run"), "{err}");
+    // A run of no claim prints none; a whole run the pipeline's own line.
+    let (_, err, _) = s.run("p.yaml", &["--target", "pulloff"]);
+    assert!(!err.contains("claims in scope"), "{err}");
+    let (_, err, _) = s.run("p.yaml", &[]);
+    assert!(err.contains("2 of 3 thesis claims reproduced") && !err.contains("in scope"), "{err}");
+}
+
+#[test]
 fn a_calibrated_claim_is_counted_apart_and_regresses_if_its_calibration_breaks() {
     // Recorded as calibrated (the model tuned to it), a claim that holds reads `calibrated`,
     // not `reproduced`, in the table and the verdict line; one that stops holding is a

@@ -531,20 +531,8 @@ impl Kind for Claims {
         };
         let (verdicts, expected, ids) = (text("verdict")?, text("expected")?, text("id")?);
         let n = verdicts.len();
-        let reproduced = verdicts.iter().filter(|v| *v == "reproduced").count();
-        let calibrated = verdicts.iter().filter(|v| *v == "calibrated").count();
-        let explained = verdicts.iter().zip(&expected).filter(|(v, e)| *v == "differs" && *e == "differs").count();
-        let regressed = n - reproduced - calibrated - explained;
-        let mut line = format!("{reproduced} of {n} thesis claims reproduced, ");
-        if calibrated > 0 {
-            line.push_str(&format!("{calibrated} calibrated (the model tuned to them), "));
-        }
-        line.push_str(&format!("{explained} differ (explained)"));
-        if regressed > 0 {
-            line.push_str(&format!(", {regressed} regressed"));
-        }
         let mut out = Output::from(table);
-        out.notes.push(line);
+        out.notes.push(verdict_line(&verdicts, &expected, None));
         let newly: Vec<&str> = (0..n)
             .filter(|&i| verdicts[i] == "reproduced" && expected[i] == "differs")
             .map(|i| ids[i].as_str())
@@ -556,6 +544,46 @@ impl Kind for Claims {
     }
 }
 
+/// The verdict line of claims with these verdicts and recorded expectations: "45 of 58
+/// thesis claims reproduced, 1 calibrated (the model tuned to them), 12 differ (explained)",
+/// ", 2 regressed" where some are. With `of_all`, the claims of a run that reached only
+/// some of the pipeline's `of_all`: "3 of 3 claims in scope reproduced, ..., 62 not run".
+pub fn verdict_line(verdicts: &[String], expected: &[String], of_all: Option<usize>) -> String {
+    let n = verdicts.len();
+    let reproduced = verdicts.iter().filter(|v| *v == "reproduced").count();
+    let calibrated = verdicts.iter().filter(|v| *v == "calibrated").count();
+    let explained = verdicts.iter().zip(expected).filter(|(v, e)| *v == "differs" && *e == "differs").count();
+    let regressed = n - reproduced - calibrated - explained;
+    let mut line = match of_all {
+        None => format!("{reproduced} of {n} thesis claims reproduced, "),
+        Some(_) => format!("{reproduced} of {n} claims in scope reproduced, "),
+    };
+    if calibrated > 0 {
+        line.push_str(&format!("{calibrated} calibrated (the model tuned to them), "));
+    }
+    line.push_str(&format!("{explained} differ (explained)"));
+    if regressed > 0 {
+        line.push_str(&format!(", {regressed} regressed"));
+    }
+    if let Some(all) = of_all {
+        line.push_str(&format!(", {} not run", all.saturating_sub(n)));
+    }
+    line
+}
+
+/// The verdict line of a run that did not reach the `claims` stage, from the tables of the
+/// claim tasks it ran or found cached (`of_all`: the pipeline's claim stages); none if it
+/// reached no claim.
+pub fn partial_verdict_line(claim_tables: &[&Table], of_all: usize) -> Option<String> {
+    let text = |t: &Table, name: &str| match t.column(name) {
+        Some(ColumnData::Str(v)) => v.clone(),
+        _ => Vec::new(),
+    };
+    let verdicts: Vec<String> = claim_tables.iter().flat_map(|t| text(t, "verdict")).collect();
+    let expected: Vec<String> = claim_tables.iter().flat_map(|t| text(t, "expected")).collect();
+    (!verdicts.is_empty() && verdicts.len() == expected.len()).then(|| verdict_line(&verdicts, &expected, Some(of_all)))
+}
+
 pub fn register(r: &mut Registry) {
     r.add::<Claim>();
     r.add::<Claims>();
@@ -563,7 +591,24 @@ pub fn register(r: &mut Registry) {
 
 #[cfg(test)]
 mod tests {
-    use super::monotone;
+    use super::{monotone, verdict_line};
+
+    #[test]
+    fn a_run_of_some_claims_says_how_many_it_did_not_run() {
+        let v = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        let (verdicts, expected) =
+            (v(&["reproduced", "reproduced", "differs"]), v(&["reproduced", "reproduced", "differs"]));
+        assert_eq!(verdict_line(&verdicts, &expected, None), "2 of 3 thesis claims reproduced, 1 differ (explained)");
+        assert_eq!(
+            verdict_line(&verdicts, &expected, Some(65)),
+            "2 of 3 claims in scope reproduced, 1 differ (explained), 62 not run"
+        );
+        let regressed = v(&["reproduced", "differs", "differs"]);
+        assert_eq!(
+            verdict_line(&regressed, &expected, Some(3)),
+            "1 of 3 claims in scope reproduced, 1 differ (explained), 1 regressed, 0 not run"
+        );
+    }
 
     #[test]
     fn monotonicity_is_judged_within_the_error_estimates() {
