@@ -17,7 +17,7 @@ fn main() {
         let half_length = domain_half_length(&params, 1e-3);
         let fine = solve(&params, Mesh { n: 9601, half_length });
         let coarse = solve(&params, Mesh { n: 4801, half_length });
-        assert!(fine.converged && coarse.converged, "reference did not converge");
+        assert!(fine.converged() && coarse.converged(), "reference did not converge");
         let (mf, mc) = (fine.friction().mu_star, coarse.friction().mu_star);
         let mu_ref = mf + (mf - mc) / 3.0;
         let report = |label: &str, n: usize, dt: f64, mu: f64, est: f64, it: usize, lu: usize, ok: bool| {
@@ -32,12 +32,12 @@ fn main() {
             let t0 = Instant::now();
             let s = solve(&params, Mesh { n, half_length });
             let dt = t0.elapsed().as_secs_f64();
-            report("fixed", n, dt, s.friction().mu_star, f64::NAN, s.iterations, s.factorizations, s.converged);
+            report("fixed", n, dt, s.friction().mu_star, f64::NAN, s.iterations, s.factorizations, s.converged());
         }
         let t0 = Instant::now();
         let (s, est) = solve_to_tolerance(&params, starting_mesh(&params, 1e-3), 1e-3, 16_000);
         let dt = t0.elapsed().as_secs_f64();
-        report("rel 1e-3", s.mesh.n, dt, s.friction().mu_star, est, s.iterations, s.factorizations, s.converged);
+        report("rel 1e-3", s.mesh.n, dt, s.friction().mu_star, est, s.iterations, s.factorizations, s.converged());
         println!(
             "{lambda:>6} {w:>5} {:>8} {:>6} {:>9} {mu_ref:>12.6}   (reference, L = {half_length:.2})",
             "richard", "", ""

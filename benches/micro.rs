@@ -30,7 +30,7 @@ fn bem_solve(bencher: divan::Bencher, n: usize) {
     let params = Params::sls(1.0, 1.0, 0.1, 1.0);
     bencher.bench(|| {
         let s = solve(&params, Mesh { n, half_length: 4.0 });
-        assert!(s.converged);
+        assert!(s.converged());
         s.friction().mu_star
     });
 }

@@ -16,7 +16,7 @@ use repro::theory::line_contact::{lj_rigid_pull_off_coefficient, maugis_dugdale_
 
 fn solved(lambda: f64, w: f64, k: f64, v0: f64, mesh: Mesh) -> Solution {
     let s = solve(&Params::sls(lambda, w, k, v0), mesh);
-    assert!(s.converged, "lambda {lambda} W {w} V0 {v0}: residual {}", s.residual);
+    assert!(s.converged(), "lambda {lambda} W {w} V0 {v0}: residual {}", s.residual);
     s
 }
 
@@ -59,7 +59,7 @@ fn pull_off_at(lambda: f64, k: f64, v0: f64, n: Option<usize>) -> f64 {
     let po = pull_off(&start, 1e-3);
     assert!(po.converged, "lambda {lambda} k {k} V0 {v0}: the branch ended at W = {}", po.load);
     // The state at pull-off is an equilibrium carrying that load.
-    assert!(po.solution.converged && po.solution.residual < 1e-9);
+    assert!(po.solution.converged() && po.solution.residual < 1e-9);
     po.load
 }
 
@@ -142,7 +142,7 @@ fn tensile_loads_are_solved_on_the_stable_branch() {
     assert!(down.adhered_half_width().unwrap() > po.solution.adhered_half_width().unwrap() * 1.1);
     // Beyond the pull-off: reported as not converged, with finite fields.
     let beyond = solve(&Params::sls(1.0, -2.5, 0.1, 1.0), Mesh { n: 200, half_length: 5.4 });
-    assert!(!beyond.converged && beyond.residual.is_finite() && beyond.residual > 0.1, "{}", beyond.residual);
+    assert!(!beyond.converged() && beyond.residual.is_finite() && beyond.residual > 0.1, "{}", beyond.residual);
     assert!(beyond.friction().mu_star.is_finite());
 }
 

@@ -9,7 +9,7 @@ use repro::rheology::Spectrum;
 
 fn mu_star(p: &Params, mesh: Mesh) -> f64 {
     let s = solve(p, mesh);
-    assert!(s.converged, "{p:?}: residual {}", s.residual);
+    assert!(s.converged(), "{p:?}: residual {}", s.residual);
     s.friction().mu_star
 }
 

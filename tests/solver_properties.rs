@@ -114,8 +114,8 @@ proptest! {
         let p = Params::sls(10f64.powf(ll), 10f64.powf(lw), 10f64.powf(lk), 10f64.powf(lv));
         let s = solve(&p, Mesh { n: 240, half_length: 4.0 });
         let f = s.friction();
-        prop_assert!(s.residual.is_finite() || !s.converged);
-        if s.converged {
+        prop_assert!(s.residual.is_finite() || !s.converged());
+        if s.converged() {
             prop_assert!(s.p.iter().chain(&s.h).all(|v| v.is_finite()));
             prop_assert!(f.mu_star.is_finite() && f.mu_star >= -1e-9, "mu* = {}", f.mu_star);
             prop_assert!((s.load() - p.w).abs() <= 1e-6 * p.w.abs(), "load {} vs W {}", s.load(), p.w);
@@ -131,7 +131,7 @@ proptest! {
         let (k, v0) = if relaxed { (0.1, 1e-7) } else { (0.99999, 1.0) };
         let p = Params::sls(10f64.powf(ll), 10f64.powf(lw), k, v0);
         let s = solve(&p, Mesh { n: 240, half_length: 4.0 });
-        prop_assert!(s.converged);
+        prop_assert!(s.converged());
         let n = s.p.len();
         let peak = s.p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let asym = (0..n).map(|i| (s.p[i] - s.p[n - 1 - i]).abs()).fold(0.0, f64::max);
@@ -192,15 +192,15 @@ proptest! {
         // and is caught by the search along the path (`branch::along_the_path`; the cases it found are
         // `the_descent_reaches_95_percent_of_the_pull_off_at_large_lambda`).
         let start = solve(&p, repro::bem::solver::starting_mesh(&p, 1e-3));
-        prop_assert!(start.converged);
+        prop_assert!(start.converged());
         let po = pull_off(&start, 1e-4);
         prop_assert!(po.converged && po.load < 0.0 && po.load.is_finite(), "pull-off {}", po.load);
         prop_assert!(po.load >= repro::theory::line_contact::jkr_pull_off() - 1e-3, "{} beyond JKR", po.load);
         let inside = descend_to_load(&start, 0.95 * po.load);
-        prop_assert!(inside.converged && (inside.load() - 0.95 * po.load).abs() < 1e-6, "{}", inside.load());
+        prop_assert!(inside.converged() && (inside.load() - 0.95 * po.load).abs() < 1e-6, "{}", inside.load());
         prop_assert_eq!(inside.termination, repro::bem::solver::Termination::Converged);
         let beyond = descend_to_load(&start, 1.05 * po.load);
-        prop_assert!(!beyond.converged);
+        prop_assert!(!beyond.converged());
         // Why: past the pull-off the stable branch has no state at that load.
         prop_assert_eq!(beyond.termination, repro::bem::solver::Termination::BeyondPullOff);
         prop_assert!(beyond.residual > 0.0 && beyond.residual.is_finite());
@@ -222,20 +222,20 @@ fn the_descent_reaches_95_percent_of_the_pull_off_at_large_lambda() {
         let mesh = starting_mesh(&p, 1e-3);
         let mesh = n.map_or(mesh, |n| Mesh { n, ..mesh });
         let start = solve(&p, mesh);
-        assert!(start.converged, "lambda {lambda}: start");
+        assert!(start.converged(), "lambda {lambda}: start");
         let po = pull_off(&start, 1e-4);
         assert!(po.converged && po.load < 0.0, "lambda {lambda}: pull-off {}", po.load);
         let inside = descend_to_load(&start, 0.95 * po.load);
         assert!(
-            inside.converged && (inside.load() - 0.95 * po.load).abs() < 1e-6,
+            inside.converged() && (inside.load() - 0.95 * po.load).abs() < 1e-6,
             "lambda {lambda}, k {k}: descent to {} ended at {} (converged {}, residual {:e})",
             0.95 * po.load,
             inside.load(),
-            inside.converged,
+            inside.converged(),
             inside.residual
         );
         let beyond = descend_to_load(&start, 1.05 * po.load);
-        assert!(!beyond.converged && beyond.residual > 0.0 && beyond.residual.is_finite());
+        assert!(!beyond.converged() && beyond.residual > 0.0 && beyond.residual.is_finite());
         assert_eq!(beyond.termination, repro::bem::solver::Termination::BeyondPullOff);
     }
 }

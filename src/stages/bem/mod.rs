@@ -320,9 +320,9 @@ impl Kind for BemSweep {
         let f = s.friction();
         let (lead, trail) = s.contact_edges().unwrap_or((0.0, 0.0));
         let (p_max, p_min) = extremes(&s);
-        let ok = s.converged && f.mu_star.is_finite();
+        let ok = s.converged() && f.mu_star.is_finite();
         // Why the solver stopped; a converged state whose friction is not finite is not one.
-        let termination = if s.converged && !ok { "non_finite_friction" } else { s.termination.name() };
+        let termination = if s.converged() && !ok { "non_finite_friction" } else { s.termination.name() };
         let t = p
             .parameter_columns(1)
             .with_f64("mu_star", vec![finite(f.mu_star)])
@@ -404,7 +404,7 @@ impl Kind for BemProfile {
     fn run(p: &BemParams, inputs: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let (s, estimate, _) = p.solve(inputs)?;
-        if !s.converged {
+        if !s.converged() {
             return Err(
                 NotConverged { termination: s.termination, residual: s.residual, iterations: s.iterations }.into()
             );

@@ -70,7 +70,7 @@ fn arc(t: [f64; 2], at: [f64; 2], s: f64) -> Control {
 
 impl Walk {
     fn new(start: &Solution) -> Walk {
-        assert!(start.converged, "a walk starts from an equilibrium");
+        assert!(start.converged(), "a walk starts from an equilibrium");
         let width = start.adhered_half_width().unwrap_or(1.0);
         let step0 = 0.02 * width * width;
         Walk {
@@ -118,10 +118,10 @@ impl Walk {
             };
             let control = arc(t, point(&cur), self.step);
             let mut trial = self.solve(control, predicted.as_deref().unwrap_or(&cur.h), delta0);
-            if !(trial.converged && on_branch(&cur, &trial)) && predicted.is_some() {
+            if !(trial.converged() && on_branch(&cur, &trial)) && predicted.is_some() {
                 trial = self.solve(control, &cur.h, cur.delta);
             }
-            if trial.converged && on_branch(&cur, &trial) {
+            if trial.converged() && on_branch(&cur, &trial) {
                 self.path.push(point(&trial));
                 self.states.push(trial);
                 if self.states.len() > 3 {
@@ -230,10 +230,10 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
             let h: Vec<f64> = centre.h.iter().zip(&other.h).map(|(a, b)| a + fraction * (b - a)).collect();
             let delta = centre.delta + fraction * (other.delta - centre.delta);
             let mut r = walk.solve(arc(t, c, s), &h, delta);
-            if !(r.converged && on_branch(&centre, &r)) {
+            if !(r.converged() && on_branch(&centre, &r)) {
                 r = walk.solve(arc(t, c, s), &centre.h, centre.delta);
             }
-            if !(r.converged && on_branch(&centre, &r)) {
+            if !(r.converged() && on_branch(&centre, &r)) {
                 return f64::NEG_INFINITY;
             }
             refined = true;
@@ -279,13 +279,13 @@ fn along_the_path(walk: &mut Walk, above: &Solution, below: &Solution, w: f64) -
         let s = (a * gb - b * ga) / (gb - ga);
         let near = if s - a < b - s { &sa } else { &sb };
         let r = walk.solve(arc(t, origin, s), &near.h, near.delta);
-        if !(r.converged && on_branch(above, &r)) {
+        if !(r.converged() && on_branch(above, &r)) {
             return None;
         }
         let g = r.load() - w;
         if g.abs() <= TOLERANCE {
             let mut polished = walk.solver.solve_load(w, &r);
-            if polished.converged && on_branch(above, &polished) {
+            if polished.converged() && on_branch(above, &polished) {
                 polished.iterations += r.iterations;
                 return Some(polished);
             }
@@ -335,7 +335,7 @@ pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
             guess.h = above.h.iter().zip(&below.h).map(|(a, b)| a + t * (b - a)).collect();
             guess.delta = above.delta + t * (below.delta - above.delta);
             let mut s = walk.solver.solve_load(w, &guess);
-            if !(s.converged && on_branch(&above, &s)) {
+            if !(s.converged() && on_branch(&above, &s)) {
                 s = along_the_path(&mut walk, &above, &below, w).unwrap_or_else(|| {
                     s.stop(Termination::OffBranch);
                     s

@@ -54,11 +54,11 @@ pub(super) fn continue_geometric(
             None => step(next, &last.h, last.delta),
         };
         iterations += trial.iterations;
-        if !trial.converged && predicted.is_some() {
+        if !trial.converged() && predicted.is_some() {
             trial = step(next, &last.h, last.delta);
             iterations += trial.iterations;
         }
-        if trial.converged {
+        if trial.converged() {
             previous = Some((value, std::mem::take(&mut last.h), last.delta));
             value = next;
             last = trial;
@@ -107,7 +107,7 @@ pub(super) const LAMBDA_START: f64 = 0.3;
 pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     if params.w < 0.0 {
         let start = solve(&params.with_load(params.w.abs().max(0.1)), mesh);
-        let mut s = if start.converged { super::branch::descend_to_load(&start, params.w) } else { start.clone() };
+        let mut s = if start.converged() { super::branch::descend_to_load(&start, params.w) } else { start.clone() };
         s.params = params.clone();
         s.iterations += start.iterations;
         s.factorizations += start.factorizations;
@@ -116,13 +116,13 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     let mut pre = Preconditioner::default();
     let levels = mesh_levels(params, mesh);
     let mut s = solve_along(params, &levels, true, &mut pre);
-    if !s.converged && levels.len() > 1 {
+    if !s.converged() && levels.len() > 1 {
         // The same path on the final mesh alone.
         let first = s.iterations;
         s = solve_along(params, &[mesh], true, &mut pre);
         s.iterations += first;
     }
-    if !s.converged {
+    if !s.converged() {
         let first = s.iterations;
         s = solve_along(params, &[mesh], false, &mut pre);
         s.iterations += first;
@@ -202,7 +202,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
     let v_target = params.v();
     let stages: [bool; 2] = if speed_first { [true, false] } else { [false, true] };
     for speed in stages {
-        if !sol.converged {
+        if !sol.converged() {
             break;
         }
         if speed {
@@ -233,7 +233,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                 if i > 0 {
                     sol = interpolated_newton(&sol, mesh, 40, pre);
                     iterations += sol.iterations;
-                    if !sol.converged {
+                    if !sol.converged() {
                         break;
                     }
                 }
@@ -258,7 +258,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                         });
                     sol = s;
                     iterations += it;
-                    if !sol.converged {
+                    if !sol.converged() {
                         break;
                     }
                 }

@@ -121,7 +121,6 @@ pub(super) fn newton_limited(
         u,
         u_edges,
         delta,
-        converged: termination == Termination::Converged,
         termination,
         iterations,
         factorizations: pre.factorizations,

@@ -41,7 +41,7 @@ pub fn solve_with_estimate(params: &Params, mesh: Mesh) -> (Solution, f64) {
 /// |mu*(n) - mu*(n/2)| / 3. What the refinement stops on.
 pub(super) fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
     let mu = fine.friction().mu_star;
-    let estimate = if coarse.converged && fine.converged {
+    let estimate = if coarse.converged() && fine.converged() {
         extrapolation::richardson(mu, coarse.friction().mu_star, 2.0)
     } else {
         mu.abs()
@@ -64,7 +64,7 @@ pub(super) fn richardson(fine: &Solution, coarse: &Solution) -> f64 {
 /// `coarser`, the two-level estimate.
 pub(super) fn observed_estimate(fine: &Solution, coarse: &Solution, coarser: Option<&Solution>) -> f64 {
     let two_level = richardson(fine, coarse);
-    let Some(coarser) = coarser.filter(|c| c.converged && coarse.converged && fine.converged) else {
+    let Some(coarser) = coarser.filter(|c| c.converged() && coarse.converged() && fine.converged()) else {
         return two_level;
     };
     let mu = |s: &Solution| s.friction().mu_star;
@@ -107,7 +107,7 @@ pub(super) fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Optio
         }
     }
     let s = interpolated_newton(coarse, mesh, 40, &mut pre);
-    *carried = if s.converged { pre.active } else { None };
+    *carried = if s.converged() { pre.active } else { None };
     or_continuation(s, mesh)
 }
 
@@ -121,7 +121,7 @@ fn coarsen(fine: &Solution, mesh: Mesh) -> Solution {
 /// `s` if it converged, else the full continuation on `mesh` (its iterations and
 /// factorisations counting those of `s`).
 fn or_continuation(s: Solution, mesh: Mesh) -> Solution {
-    if s.converged {
+    if s.converged() {
         return s;
     }
     let mut full = solve(&s.params, mesh);
@@ -202,7 +202,7 @@ fn refine_to(
     let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
     let mut carried = None;
     let mut next = |from: &Solution, n: usize| {
-        let mut s = if from.converged {
+        let mut s = if from.converged() {
             refine_carrying(from, Mesh { n, ..mesh }, &mut carried)
         } else {
             carried = None;
@@ -225,7 +225,7 @@ fn refine_to(
         // Two levels in a row without a converged solution: refining will not rescue the
         // point (a load beyond pull-off walks to its fold on every mesh, and doubling to
         // n_max costs minutes: docs/tuning.md). It is reported as is.
-        let hopeless = !fine.converged && !coarse.converged;
+        let hopeless = !fine.converged() && !coarse.converged();
         let capped = 2 * fine.mesh.n > n_max;
         if hopeless || capped || two_level <= rel_tol * mu {
             // The domain's share, which refining the mesh does not change.
@@ -233,7 +233,7 @@ fn refine_to(
             if !three_levels {
                 return (fine, ErrorShares { mesh: two_level, domain });
             }
-            if coarser.is_none() && !hopeless && fine.converged && coarse.mesh.n / 2 >= 8 {
+            if coarser.is_none() && !hopeless && fine.converged() && coarse.mesh.n / 2 >= 8 {
                 let c = coarsen(&coarse, Mesh { n: coarse.mesh.n / 2, ..mesh });
                 restricted = (restricted.0 + c.iterations, restricted.1 + c.factorizations);
                 coarser = Some(c);

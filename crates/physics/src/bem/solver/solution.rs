@@ -28,9 +28,7 @@ pub struct Solution {
     /// U at the n + 1 element edges.
     pub u_edges: Vec<f64>,
     pub delta: f64,
-    /// `termination == Termination::Converged`.
-    pub converged: bool,
-    /// Why the solver stopped.
+    /// Why the solver stopped (`converged` derives from it).
     pub termination: Termination,
     /// Newton iterations over the whole continuation path.
     pub iterations: usize,
@@ -84,15 +82,19 @@ pub struct Friction {
 }
 
 impl Solution {
+    /// Whether the solver met its tolerance: the termination is `Converged`.
+    pub fn converged(&self) -> bool {
+        self.termination == Termination::Converged
+    }
+
     /// Its state as a start for another solve (`Start`); None unless converged.
     pub fn start(&self) -> Option<Start> {
-        self.converged.then(|| Start { x: self.x.clone(), h: self.h.clone(), delta: self.delta })
+        self.converged().then(|| Start { x: self.x.clone(), h: self.h.clone(), delta: self.delta })
     }
 
     /// Marks the solution as stopped for `why` (not converged unless `why` is `Converged`).
     pub fn stop(&mut self, why: Termination) {
         self.termination = why;
-        self.converged = why == Termination::Converged;
     }
 
     pub fn friction(&self) -> Friction {
