@@ -396,27 +396,37 @@ fn a_task_that_would_need_more_memory_than_there_is_is_not_started_and_the_other
     // nested one 10.3 GB): refused before it allocates when 1 GB is available; the small
     // point runs.
     let s = Scratch::new("memory");
+    let big = refused_beside_a_small_stage(&s, "bem.sweep", "{lambda: 1, W: 1, k: 0.1, V0: 1, n: 32000}", "1e9");
+    let needed = big["failure"]["needed_bytes"].as_u64().unwrap();
+    assert!((10.2e9..10.3e9).contains(&(needed as f64)), "{needed}");
+    let error = big["error"].as_str().unwrap();
+    assert!(error.starts_with("not started: it may need 10.3 GB of memory, 1.0 GB is available"), "{error}");
+}
+
+/// Runs a pipeline of the stage `big` (`kind`, `params`) beside a small one with
+/// `REPRO_MEMORY_BYTES` = `memory`: the run exits 1, `big` is refused as `resources` before
+/// it runs, the small one computes. `big`'s record.
+fn refused_beside_a_small_stage(s: &Scratch, kind: &str, params: &str, memory: &str) -> serde_json::Value {
     s.write(
         "p.yaml",
-        "stages:\n  - name: big\n    kind: bem.sweep\n    params: {lambda: 1, W: 1, k: 0.1, V0: 1, n: 32000}\n  - name: small\n    kind: util.sleep\n    params: {x: 1}\n",
+        &format!(
+            "stages:\n  - name: big\n    kind: {kind}\n    params: {params}\n  - name: small\n    kind: util.sleep\n    params: {{x: 1}}\n"
+        ),
     );
     let out = s
         .command(&["run", "p.yaml", "-q", "--report", "report.json"])
-        .env("REPRO_MEMORY_BYTES", "1e9")
+        .env("REPRO_MEMORY_BYTES", memory)
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
     let report: serde_json::Value = serde_json::from_slice(&s.read("report.json")).unwrap();
     let tasks = report["tasks"].as_array().unwrap();
-    let big = tasks.iter().find(|t| t["stage"] == "big").unwrap();
+    let big = tasks.iter().find(|t| t["stage"] == "big").unwrap().clone();
     assert_eq!(big["failure"]["kind"], "resources", "{big}");
-    let needed = big["failure"]["needed_bytes"].as_u64().unwrap();
-    assert!((10.2e9..10.3e9).contains(&(needed as f64)), "{needed}");
-    let error = big["error"].as_str().unwrap();
-    assert!(error.starts_with("not started: it may need 10.3 GB of memory, 1.0 GB is available"), "{error}");
     assert!(big["wall_time_s"].as_f64().unwrap() < 0.1, "refused before it ran: {big}");
     let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
     assert_eq!(small["status"], "computed");
+    big
 }
 
 #[test]
@@ -436,27 +446,14 @@ fn a_shell_cycle_that_no_memory_holds_is_refused_before_it_allocates() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("not started: it may need 5590.8 GB of memory, 4.0 GB is available"), "{err}");
-    s.write(
-        "p.yaml",
-        &format!(
-            "stages:\n  - name: big\n    kind: fem.indent\n    params: {{shell: {shell}, delta_max: 0.5, steps: 100000}}\n  - name: small\n    kind: util.sleep\n    params: {{x: 1}}\n"
-        ),
+    let big = refused_beside_a_small_stage(
+        &s,
+        "fem.indent",
+        &format!("{{shell: {shell}, delta_max: 0.5, steps: 100000}}"),
+        "4e9",
     );
-    let out = s
-        .command(&["run", "p.yaml", "-q", "--report", "report.json"])
-        .env("REPRO_MEMORY_BYTES", "4e9")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
-    let report: serde_json::Value = serde_json::from_slice(&s.read("report.json")).unwrap();
-    let tasks = report["tasks"].as_array().unwrap();
-    let big = tasks.iter().find(|t| t["stage"] == "big").unwrap();
-    assert_eq!(big["failure"]["kind"], "resources", "{big}");
     let needed = big["failure"]["needed_bytes"].as_u64().unwrap() as f64;
     assert!((5.5e12..5.7e12).contains(&needed), "{needed}");
-    assert!(big["wall_time_s"].as_f64().unwrap() < 0.1, "refused before it ran: {big}");
-    let small = tasks.iter().find(|t| t["stage"] == "small").unwrap();
-    assert_eq!(small["status"], "computed");
 }
 
 #[test]
