@@ -159,11 +159,9 @@ pub struct PullOff {
 /// stops walking, as a fraction of that load (negative): a rise ends the search only if it
 /// continues. Under load control the state at a shallower first minimum jumps to the
 /// branch's next descending part at the same load, so the pull-off is the deeper minimum.
-/// Measured: at lambda = 3, k = 0.001, V = 1 the load falls to -2.6104, rises by 0.27% while
-/// the approach turns, then falls to the pull-off, -2.7462 (the first rise had been reported
-/// as the pull-off); at lambda = 3, k = 0.1 on 290 elements (the cohesive zone unresolved)
-/// it dips to +0.044 before the branch turns down. 2 % costs little more than stopping at
-/// the first rise; 10 % a third more (docs/tuning.md).
+/// A small rise on the way to the deeper minimum is real (fig5_8's sweep at lambda = 3;
+/// docs/bem.md, Chapter 5, the pull-off, has the numbers). Stopping at 2 % costs little
+/// more than at the first rise, at 10 % a third more (docs/tuning.md).
 const RISE: f64 = 0.02;
 
 /// Walks down the branch from the converged state `start` (any load above the pull-off) and

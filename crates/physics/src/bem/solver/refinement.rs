@@ -13,13 +13,9 @@ use crate::numerics::extrapolation;
 /// Safety factors of the reported error estimate of mu* (`solve_to_tolerance`): on the
 /// mesh's Richardson share, Roache's factor 3 for a grid convergence index from two grids
 /// (the reported share is then |mu*(n) - mu*(n/2)|), and 2 on the domain's
-/// (`domain_rel_error`). Measured (`pipelines/bench.yaml`: W = 1, k = 0.1,
-/// lambda = 0.3 and 3, V0 = 0.1, 1, 10, against rel_tol 1e-5 on a 2.5 times longer
-/// domain): without them the actual error of mu* was 0.4-1.45 times the estimate (the
-/// largest at lambda = 3, V0 = 0.1, where the mesh sequence is not yet asymptotic at
-/// rel_tol 3e-3); before the domain's share was counted, up to 7 times on the defaults and
-/// 60-290 times on fixed meshes. The refinement itself stops on the bare shares against
-/// rel_tol (`refine_to`).
+/// (`domain_rel_error`): with them every point of the bench's configurations is covered
+/// (`pipelines/bench.yaml`; docs/bem.md, Chapter 4's model, has the ratios of actual error to
+/// estimate). The refinement itself stops on the bare shares against rel_tol (`refine_to`).
 pub const MESH_SAFETY: f64 = 3.0;
 
 pub const DOMAIN_SAFETY: f64 = 2.0;
