@@ -175,6 +175,10 @@ def test_unconverged_rows_raise_only_when_asked(tmp_path):
 
 
 def interrupt_after(seconds):
+    # Python raises KeyboardInterrupt only if SIGINT was not ignored when it started (a
+    # process started in the background by a non-interactive shell inherits it ignored):
+    # the handler is installed here, as an interactive session has it.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     t = threading.Timer(seconds, lambda: os.kill(os.getpid(), signal.SIGINT))
     t.start()
     return t
