@@ -1,7 +1,7 @@
 //! The command line's arguments (clap): the commands, their options and their help.
 
 use clap::{Parser, Subcommand};
-use repro::pipeline::spec;
+use pipeline::spec;
 use std::path::PathBuf;
 
 pub(crate) const DEFAULT_PIPELINE: &str = "pipelines/thesis.yaml";

@@ -11,10 +11,7 @@ pub(crate) fn csv_field(t: &str) -> String {
 }
 
 /// `repro kinds KIND`: a kind's parameters and output columns, as a table of text.
-pub(crate) fn describe_kind(
-    k: &dyn repro::pipeline::kind::DynKind,
-    registry: &repro::pipeline::kind::Registry,
-) -> String {
+pub(crate) fn describe_kind(k: &dyn pipeline::kind::DynKind, registry: &pipeline::kind::Registry) -> String {
     let d = repro::description::describe(k, registry);
     let mut out = format!(
         "{} (code version {}): {}\ntime limit per task: {} s (a stage's `time_limit`, `repro run --time-limit`)\n\n",

@@ -3,7 +3,7 @@
 //! output columns with their units and meanings from `docs/outputs.md`. One source for
 //! `repro kinds KIND` and the Python package's `describe` and type stubs.
 
-use crate::pipeline::kind::{range_text, DynKind, Registry};
+use pipeline::kind::{range_text, DynKind, Registry};
 use serde::Serialize;
 use serde_json::Value;
 

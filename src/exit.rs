@@ -10,9 +10,9 @@
 //! | 4 | any other error: the file system, the cache, SLURM (outputs written where possible) |
 //! | 5 | every task ran, and a thesis claim that held before no longer holds |
 
-use repro::pipeline::cache::CacheBusy;
-use repro::pipeline::executor::{RunError, UsageError};
-use repro::pipeline::spec::InvalidPipeline;
+use pipeline::cache::CacheBusy;
+use pipeline::executor::{RunError, UsageError};
+use pipeline::spec::InvalidPipeline;
 use std::process::ExitCode;
 
 /// How a command ended.
@@ -60,7 +60,7 @@ pub enum CliError {
     /// The one task of `repro point` failed, panicked, ran out of time or was refused its
     /// memory (as a task of a run fails: exit code 1).
     #[error("the point was not computed: {0}")]
-    TaskFailed(#[from] repro::pipeline::task::TaskError),
+    TaskFailed(#[from] pipeline::task::TaskError),
     /// Anything else (the file system, the cache, SLURM), with its chain of causes.
     #[error("{0:#}")]
     Other(#[from] anyhow::Error),
@@ -132,7 +132,7 @@ mod tests {
         let busy = CliError::from(RunError::CacheBusy(CacheBusy { dir: "c".into(), holder: "pid 1".into() }));
         let usage = CliError::from(RunError::Usage(UsageError::UnknownStage("--target x".into())));
         let io = CliError::from(std::io::Error::other("disk full"));
-        let failed = CliError::from(repro::pipeline::task::TaskError::TimedOut { limit_s: 1.0 });
+        let failed = CliError::from(pipeline::task::TaskError::TimedOut { limit_s: 1.0 });
         let codes: Vec<u8> = [invalid, usage, busy, io, failed].iter().map(|e| e.exit().code()).collect();
         assert_eq!(codes, vec![2, 2, 3, 4, 1]);
     }

@@ -1,9 +1,12 @@
 //! `repro`: a reproduction engine for a thesis on adhesion and friction in soft contact
 //! mechanics. Three crates, one per layer: `repro-pipeline` (the orchestrator, free of
-//! physics, re-exported as [`pipeline`]), `repro-physics` (the models and numerics, free of
-//! files, serialisation and YAML, re-exported as [`theory`], [`rheology`], [`bem`], [`fem`]
-//! and [`numerics`]), and this crate: the stage kinds that bind the two ([`stages`]), the
-//! reproduction report and the command line.
+//! physics; `pipeline::` in this crate's code), `repro-physics` (the models and numerics,
+//! free of files, serialisation and YAML; `physics::`), and this crate: the stage kinds
+//! that bind the two ([`stages`]; the value policies every kind follows in
+//! [`stages::values`]), the reproduction report and the command line. The two crates are
+//! re-exported here ([`pipeline`], [`theory`], [`rheology`], [`bem`], [`fem`],
+//! [`numerics`]) for the library's users, the tests and the Python package; this crate's
+//! own code names them by their crates (`tests/architecture.rs`).
 
 // `!(x > 0.0)` is how the checks say "not positive, or NaN": keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

@@ -10,25 +10,25 @@ use clap::Parser;
 use cli::{Cli, Command, ExecutorArg};
 use describe::{csv_field, describe_kind};
 use exit::{CliError, Exit};
-use repro::pipeline::cache::LockMode;
-use repro::pipeline::executor::{self, Executor, RunOptions, UsageError};
-use repro::pipeline::kind::Registry;
-use repro::pipeline::parse;
-use repro::pipeline::slurm::SlurmOptions;
-use repro::pipeline::spec::{self, InvalidPipeline, Pipeline};
-use repro::pipeline::table::ColumnData;
-use repro::pipeline::{gc, graph, report, schema};
+use pipeline::cache::LockMode;
+use pipeline::executor::{self, Executor, RunOptions, UsageError};
+use pipeline::kind::Registry;
+use pipeline::parse;
+use pipeline::slurm::SlurmOptions;
+use pipeline::spec::{self, InvalidPipeline, Pipeline};
+use pipeline::table::ColumnData;
+use pipeline::{gc, graph, report, schema};
 use repro::point::PointError;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-fn load(path: &Path, registry: &repro::pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
+fn load(path: &Path, registry: &pipeline::kind::Registry) -> Result<Pipeline, InvalidPipeline> {
     load_with(path, registry, &[])
 }
 
 fn load_with(
     path: &Path,
-    registry: &repro::pipeline::kind::Registry,
+    registry: &pipeline::kind::Registry,
     overrides: &[spec::Override],
 ) -> Result<Pipeline, InvalidPipeline> {
     let p = parse::load_with(path, registry, overrides)?;
@@ -92,8 +92,7 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
     let p = load_with(&pipeline, registry, &set)?;
     // A run with parameters set on the command line publishes apart from the file's outputs.
     let settings: Vec<String> = set.iter().map(ToString::to_string).collect();
-    let (figures, tables, apart) =
-        repro::pipeline::publish::publish_dirs(&pipeline, &settings, figures, tables, publish);
+    let (figures, tables, apart) = pipeline::publish::publish_dirs(&pipeline, &settings, figures, tables, publish);
     if let (Some(dir), false, false) = (&apart, dry_run, quiet) {
         eprintln!(
             "repro: parameters set with -S: this run publishes into {}/ (figures/ and tables/ stay the pipeline file's; --publish writes there)",
@@ -178,19 +177,19 @@ fn run_command(args: cli::RunArgs, registry: &Registry) -> Result<Exit, CliError
 /// The verdict line of a run that reached some of the pipeline's claims but not the
 /// `claims` stage that prints it (a `--target` run): from the claim tasks' cached tables.
 fn partial_verdict(p: &Pipeline, rep: &report::RunReport, cache_dir: &Path) -> Option<String> {
-    use repro::pipeline::report::Status;
+    use pipeline::report::Status;
     if rep.tasks.iter().any(|t| t.kind == "claims") {
         return None;
     }
     let of_all = p.stages.iter().filter(|s| s.kind == "claim").count();
-    let store = repro::pipeline::cache::Cache::open_read_only(cache_dir);
+    let store = pipeline::cache::Cache::open_read_only(cache_dir);
     let entries: Vec<_> = rep
         .tasks
         .iter()
         .filter(|t| t.kind == "claim" && matches!(t.status, Status::Computed | Status::Cached))
         .filter_map(|t| store.get(t.key.as_deref()?).ok())
         .collect();
-    let tables: Vec<&repro::pipeline::table::Table> = entries.iter().map(|e| &e.output.table).collect();
+    let tables: Vec<&pipeline::table::Table> = entries.iter().map(|e| &e.output.table).collect();
     repro::stages::claim::partial_verdict_line(&tables, of_all)
 }
 
@@ -210,7 +209,7 @@ fn worker_command(args: cli::WorkerArgs, registry: &Registry) -> Result<Exit, Cl
             .and_then(|v| v.parse().ok())
             .ok_or_else(|| UsageError::Argument("worker: give --index or run inside a SLURM array".into()))?,
     };
-    let ok = repro::pipeline::slurm::work(registry, &cache.cache, &list, index)?;
+    let ok = pipeline::slurm::work(registry, &cache.cache, &list, index)?;
     Ok(if ok { Exit::Success } else { Exit::FailedTasks })
 }
 
@@ -241,7 +240,7 @@ fn dag_command(args: cli::DagArgs, registry: &Registry) -> Result<Exit, CliError
         let opts = RunOptions { cache_dir: cache.cache, dry_run: true, progress: false, targets, ..Default::default() };
         let rep = executor::run(&p, registry, &opts)?;
         for t in &rep.tasks {
-            use repro::pipeline::report::Status as S;
+            use pipeline::report::Status as S;
             let s = match t.status {
                 S::Cached | S::Computed => graph::StageStatus::Cached,
                 S::Failed | S::Skipped => graph::StageStatus::Failed,
@@ -313,27 +312,26 @@ fn gc_command(args: cli::GcArgs, registry: &Registry) -> Result<Exit, CliError> 
 fn diff_command(args: cli::DiffArgs) -> Result<Exit, CliError> {
     let cli::DiffArgs { a, b, cache, rel_tol } = args;
     let runs = report::run_history(&cache.cache);
-    let pick =
-        |name: &Option<String>, default_from_end: usize| -> Result<repro::pipeline::report::RunReport, CliError> {
-            match name {
-                Some(n) => runs
-                    .iter()
-                    .find(|(p, _)| {
-                        p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
-                            || p.to_string_lossy() == n.as_str()
-                    })
-                    .map(|(_, r)| r.clone())
-                    .ok_or_else(|| CliError::usage(format!("no recorded run `{n}` (`repro runs` lists them)"))),
-                None => runs
-                    .len()
-                    .checked_sub(default_from_end)
-                    .map(|i| runs[i].1.clone())
-                    .ok_or_else(|| CliError::usage(format!("{} recorded run(s): a diff needs two", runs.len()))),
-            }
-        };
+    let pick = |name: &Option<String>, default_from_end: usize| -> Result<pipeline::report::RunReport, CliError> {
+        match name {
+            Some(n) => runs
+                .iter()
+                .find(|(p, _)| {
+                    p.file_stem().is_some_and(|s| s.to_string_lossy() == n.as_str())
+                        || p.to_string_lossy() == n.as_str()
+                })
+                .map(|(_, r)| r.clone())
+                .ok_or_else(|| CliError::usage(format!("no recorded run `{n}` (`repro runs` lists them)"))),
+            None => runs
+                .len()
+                .checked_sub(default_from_end)
+                .map(|i| runs[i].1.clone())
+                .ok_or_else(|| CliError::usage(format!("{} recorded run(s): a diff needs two", runs.len()))),
+        }
+    };
     let (ra, rb) = (pick(&a, 2)?, pick(&b, 1)?);
-    let store = repro::pipeline::cache::Cache::open_read_only(&cache.cache);
-    print!("{}", repro::pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
+    let store = pipeline::cache::Cache::open_read_only(&cache.cache);
+    print!("{}", pipeline::diff::diff(&ra, &rb, &store, rel_tol).render());
     Ok(Exit::Success)
 }
 
@@ -363,11 +361,11 @@ fn runs_command(args: cli::RunsArgs) -> Result<Exit, CliError> {
         });
         println!(
             "{name}  {}  {}{set}{commit}  {} computed, {} cached, {} failed, {:.1} s",
-            repro::pipeline::report::utc_time(r.started_unix_ms),
+            pipeline::report::utc_time(r.started_unix_ms),
             r.pipeline,
-            r.count(repro::pipeline::report::Status::Computed),
-            r.count(repro::pipeline::report::Status::Cached),
-            r.count(repro::pipeline::report::Status::Failed),
+            r.count(pipeline::report::Status::Computed),
+            r.count(pipeline::report::Status::Cached),
+            r.count(pipeline::report::Status::Failed),
             r.wall_time_s
         );
     }
@@ -435,7 +433,7 @@ fn schema_command(registry: &Registry) -> Result<Exit, CliError> {
 /// `repro show`.
 fn show_command(args: cli::ShowArgs) -> Result<Exit, CliError> {
     let cli::ShowArgs { file, columns, csv, head, all } = args;
-    let df = repro::pipeline::table::read_parquet(&file)?;
+    let df = pipeline::table::read_parquet(&file)?;
     let names: Vec<String> = if columns.is_empty() {
         df.get_column_names()
             .iter()
@@ -494,7 +492,7 @@ fn report_command(args: cli::ReportArgs, registry: &Registry) -> Result<Exit, Cl
         let (a, b) = (std::path::Path::new(recorded), pipeline.as_path());
         a == b || matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
     };
-    let own_run = repro::pipeline::report::run_history(&cache.cache)
+    let own_run = pipeline::report::run_history(&cache.cache)
         .into_iter()
         .rev()
         .find(|(_, r)| !r.dry_run && r.overrides.is_empty() && same_file(&r.pipeline))
@@ -513,7 +511,7 @@ fn report_command(args: cli::ReportArgs, registry: &Registry) -> Result<Exit, Cl
 /// `repro verify`.
 fn verify_command(args: cli::VerifyArgs) -> Result<Exit, CliError> {
     let cli::VerifyArgs { produced, reference, rel_tol } = args;
-    let v = repro::pipeline::verify::verify(&produced, &reference, rel_tol)?;
+    let v = pipeline::verify::verify(&produced, &reference, rel_tol)?;
     for (file, d) in &v.differ {
         println!("DIFFERS {}: {d}", file.display());
     }

@@ -4,8 +4,8 @@
 //! guarded as a task's is (`pipeline::task::guarded_run`: the kind's time limit, memory
 //! estimate, panics, non-finite tables).
 
-use crate::pipeline::kind::{DynKind, FieldError, Inputs, Output, Registry};
-use crate::pipeline::task::{guarded_run, TaskError};
+use pipeline::kind::{DynKind, FieldError, Inputs, Output, Registry};
+use pipeline::task::{guarded_run, TaskError};
 use serde_json::Value;
 use std::time::Duration;
 

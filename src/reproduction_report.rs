@@ -12,11 +12,11 @@
 //!
 //! One file: the page's sections share one model of the run.
 
-use crate::pipeline::cache::read_regular;
-use crate::pipeline::report::{RunReport, Status};
-use crate::pipeline::spec::Pipeline;
 use crate::stages::claim::ClaimParams;
 use anyhow::{Context, Result};
+use pipeline::cache::read_regular;
+use pipeline::report::{RunReport, Status};
+use pipeline::spec::Pipeline;
 use polars::prelude::{DataFrame, DataType};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -115,7 +115,7 @@ fn numbers(df: &DataFrame, name: &str) -> Result<Vec<f64>> {
 }
 
 fn read_claims(path: &Path) -> Result<Vec<ClaimRow>> {
-    let df = crate::pipeline::table::read_parquet(path)?;
+    let df = pipeline::table::read_parquet(path)?;
     let (id, source, statement, stage) =
         (strings(&df, "id")?, strings(&df, "source")?, strings(&df, "statement")?, strings(&df, "stage")?);
     let (value, thesis, verdict, expected) =
@@ -158,7 +158,7 @@ fn esc(s: &str) -> String {
 fn number(x: f64) -> String {
     let a = x.abs();
     if a == 0.0 || !a.is_finite() {
-        return crate::pipeline::table::format_number(x);
+        return pipeline::table::format_number(x);
     }
     if !(1e-3..1e6).contains(&a) {
         return format!("{x:.5e}");
@@ -174,7 +174,7 @@ fn number(x: f64) -> String {
 
 /// The task key of a published figure (its table's `task_key` column).
 fn figure_key(figures_dir: &Path, name: &str) -> Option<String> {
-    let df = crate::pipeline::table::read_parquet(&figures_dir.join(format!("{name}.parquet"))).ok()?;
+    let df = pipeline::table::read_parquet(&figures_dir.join(format!("{name}.parquet"))).ok()?;
     strings(&df, "task_key").ok()?.into_iter().next()
 }
 
@@ -349,7 +349,7 @@ pub fn write(p: &Pipeline, code_versions: &BTreeMap<String, u32>, src: &Sources,
     };
     let pipeline_bytes = read_regular(&src.pipeline_file)?;
     let dir = src.pipeline_file.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let (commit, dirty) = match crate::pipeline::report::git_commit(dir) {
+    let (commit, dirty) = match pipeline::report::git_commit(dir) {
         Some((c, modified)) => (Some(c), modified),
         None => (None, false),
     };
@@ -485,7 +485,7 @@ fn cost_section(run: Option<&RunReport>) -> String {
                 h,
                 "<p>The latest run of <code>{}</code> without settings, started {}: {} tasks: {computed} computed, {} from the cache, {} failed; {:.1} s of wall time.</p>",
                 esc(&r.pipeline),
-                crate::pipeline::report::utc_time(r.started_unix_ms),
+                pipeline::report::utc_time(r.started_unix_ms),
                 r.tasks.len(),
                 r.count(Status::Cached),
                 r.count(Status::Failed),
@@ -571,7 +571,7 @@ fn provenance_section(src: &Sources, pipeline_bytes: &[u8], commit: Option<Strin
 /// per stage coloured by what it is (computation, figure), a line per dependency. The claim
 /// stages, which the claims table lists, are left out.
 fn stage_graph(p: &Pipeline) -> String {
-    let shown: Vec<&crate::pipeline::spec::Stage> =
+    let shown: Vec<&pipeline::spec::Stage> =
         p.stages.iter().filter(|s| s.kind != "claim" && s.kind != "claims").collect();
     let mut depth: BTreeMap<&str, usize> = BTreeMap::new();
     // Stages are in dependency order after validation (needs come first): one pass suffices,

@@ -347,3 +347,25 @@ fn the_brace_counter_ignores_strings_characters_and_comments() {
     assert_eq!(braces_of(r"if c == '{' || c == '\'' { f('}') }"), (1, 1));
     assert_eq!(braces_of("fn f<'a>(x: &'a str) -> &'a str {"), (1, 0));
 }
+
+#[test]
+fn the_root_crate_names_the_crates_it_uses() {
+    // `src/` writes `physics::fem::...` and `pipeline::...` where it crosses into the other
+    // crates, not the re-exports `crate::fem`, `crate::pipeline` (`src/lib.rs` keeps them
+    // for the library's users: the tests, the Python package).
+    let mut files = Vec::new();
+    rust_files(Path::new("src"), &mut files);
+    let re_exported = ["fem", "bem", "numerics", "theory", "rheology", "lennard_jones", "pipeline"];
+    let mut found = Vec::new();
+    for f in files.iter().filter(|f| !f.ends_with("lib.rs")) {
+        let text = code(f);
+        for m in re_exported {
+            for prefix in ["crate::", "repro::"] {
+                if text.contains(&format!("{prefix}{m}::")) {
+                    found.push(format!("{}: {prefix}{m}::", f.display()));
+                }
+            }
+        }
+    }
+    assert!(files.len() > 20 && found.is_empty(), "{found:?}");
+}

@@ -9,9 +9,9 @@
 //! (`on_front_resolved`): no other configuration is as accurate and as fast within the
 //! resolutions and clearly better in one.
 
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
 use anyhow::{bail, Context, Result};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -10,11 +10,11 @@
 //! reproduced and no longer is, is a regression: the run exits non-zero. A claim recorded as
 //! differing carries its reason and the docs section that explains it.
 
-use super::check;
-use crate::numerics::fit::{linear_r_squared, power_law};
-use crate::pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{format_number, ColumnData, Table};
+use super::values::check;
 use anyhow::{bail, Context, Result};
+use physics::numerics::fit::{linear_r_squared, power_law};
+use pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{format_number, ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

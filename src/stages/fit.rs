@@ -1,10 +1,10 @@
 //! `fit.powerlaw`: a power law y = c x^s fitted to columns of a needed stage's table over
 //! a declared x range, per group, with the standard errors of slope and prefactor.
 
-use crate::numerics::fit::power_law;
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
 use anyhow::{bail, Context, Result};
+use physics::numerics::fit::power_law;
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

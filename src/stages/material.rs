@@ -2,7 +2,7 @@
 //! `theory.persson_brener`): the standard linear solid by default, the power-law spectrum
 //! of Eq. 5.24 when `s` is given, or a Maxwell-Wiechert relaxation Prony series.
 
-use crate::pipeline::kind::FieldError;
+use pipeline::kind::FieldError;
 
 /// Declares a kind's parameter struct with the material fields appended (`s`, `tau_ratio`,
 /// `per_decade`, `prony`; serde cannot flatten into a struct that denies unknown fields) and
@@ -45,7 +45,7 @@ macro_rules! with_material_fields {
         }
     };
 }
-use crate::rheology::Spectrum;
+use physics::rheology::Spectrum;
 pub(crate) use with_material_fields;
 
 /// A view of a kind's material fields.

@@ -11,8 +11,9 @@ pub mod material;
 pub mod pb;
 pub mod theory;
 pub mod util;
+pub mod values;
 
-use crate::pipeline::kind::{ColumnDoc, Registry};
+use pipeline::kind::{ColumnDoc, Registry};
 
 /// The output columns' units and meanings: the tables of `docs/outputs.md` (rows
 /// "| `name` | unit | meaning |"), the one description of every column the kinds write
@@ -51,6 +52,31 @@ fn table_cells(line: &str) -> Vec<String> {
     cells.iter().map(|c| c.trim().to_string()).collect()
 }
 
+/// Every stage kind a pipeline may use.
+pub fn registry() -> Registry {
+    let mut r = Registry::new();
+    r.document_columns(documented_columns());
+    // Tasks stop at the solvers' checkpoints once their time limit has passed, or the
+    // process cancelled them.
+    r.set_limiter(|limit, f| {
+        use physics::numerics::budget::{within, Exhausted};
+        within(limit, f).map_err(|why| match why {
+            Exhausted::Deadline => pipeline::kind::Stopped::TimeLimit,
+            Exhausted::Cancelled => pipeline::kind::Stopped::Interrupted,
+        })
+    });
+    theory::register(&mut r);
+    bem::register(&mut r);
+    fem::register(&mut r);
+    bench::register(&mut r);
+    claim::register(&mut r);
+    figure::register(&mut r);
+    fit::register(&mut r);
+    pb::register(&mut r);
+    util::register(&mut r);
+    r
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -68,70 +94,4 @@ mod tests {
             assert_eq!(table_cells(line).len(), 5, "{line}");
         }
     }
-}
-
-/// Every stage kind a pipeline may use.
-pub fn registry() -> Registry {
-    let mut r = Registry::new();
-    r.document_columns(documented_columns());
-    // Tasks stop at the solvers' checkpoints once their time limit has passed, or the
-    // process cancelled them.
-    r.set_limiter(|limit, f| {
-        use crate::numerics::budget::{within, Exhausted};
-        within(limit, f).map_err(|why| match why {
-            Exhausted::Deadline => crate::pipeline::kind::Stopped::TimeLimit,
-            Exhausted::Cancelled => crate::pipeline::kind::Stopped::Interrupted,
-        })
-    });
-    theory::register(&mut r);
-    bem::register(&mut r);
-    fem::register(&mut r);
-    bench::register(&mut r);
-    claim::register(&mut r);
-    figure::register(&mut r);
-    fit::register(&mut r);
-    pb::register(&mut r);
-    util::register(&mut r);
-    r
-}
-
-/// The one policy for non-finite numbers (tables never hold NaN or infinity): a value
-/// becomes 0, and the row's `converged` column says whether to trust it.
-pub(crate) fn finite(x: f64) -> f64 {
-    if x.is_finite() {
-        x
-    } else {
-        0.0
-    }
-}
-
-/// The same policy for an error bound or a residual: one that is infinite or NaN says
-/// "unbounded" and is published as f64::MAX, never as 0 (which would read as exact).
-pub(crate) fn bound(e: f64) -> f64 {
-    if e.is_finite() {
-        e
-    } else {
-        f64::MAX
-    }
-}
-
-/// Shared parameter checks and bounds. Numeric bounds are declared on the parameter types
-/// (`#[schemars(range(..))]`, `#[schemars(extend("exclusiveMinimum" = ..))]`): the schema,
-/// `repro kinds KIND` and the check of every point (`pipeline::kind::bound_errors`) read
-/// them there. The upper bounds of sizes keep a task's memory and time to what a laptop
-/// has (a size that passes is never an allocation that aborts).
-pub(crate) mod check {
-    use crate::pipeline::kind::FieldError;
-
-    pub fn non_negative(errs: &mut Vec<FieldError>, name: &str, x: f64) {
-        if !(x >= 0.0 && x.is_finite()) {
-            errs.push(FieldError::new(name, format!("must be zero or positive, got {x}")));
-        }
-    }
-
-    /// Rows of a tabulated curve.
-    pub const MAX_POINTS: usize = 1_000_000;
-    /// Elements along the shell's meridian, and load steps.
-    pub const MAX_SHELL_ELEMENTS: usize = 20_000;
-    pub const MAX_STEPS: usize = 100_000;
 }

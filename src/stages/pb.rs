@@ -3,11 +3,11 @@
 //! Figs. 5.3, 5.5-5.7), from the low-speed law (Eq. 5.20, F_T* ~ V0) and the intermediate
 //! law (Eq. 5.21, F_T* ~ V0^(1/2)) of `theory::persson_brener`.
 
-use crate::numerics::fit::{power_law, power_law_regime};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::theory::persson_brener::{rolling_linear, rolling_sqrt};
 use anyhow::Result;
+use physics::numerics::fit::{power_law, power_law_regime};
+use physics::theory::persson_brener::{rolling_linear, rolling_sqrt};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -53,7 +53,7 @@ struct Regime {
     law_slope: f64,
     v0: Vec<f64>,
     alphas: Vec<f64>,
-    fit: Option<crate::numerics::fit::PowerLaw>,
+    fit: Option<physics::numerics::fit::PowerLaw>,
 }
 
 /// Calibrates alpha_PB on each (lambda, W, k) curve, per regime: alpha is the geometric mean

@@ -2,11 +2,11 @@
 //! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
 
 use super::material::with_material_fields;
-use super::{bound, check};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::theory::{classical, line_contact, persson, persson_brener};
+use super::values::{bound, check};
 use anyhow::{bail, Result};
+use physics::theory::{classical, line_contact, persson, persson_brener};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -147,14 +147,14 @@ impl Kind for LinePullOff {
 
     fn run(p: &PullOffParams, _: &Inputs) -> Result<Output> {
         let Some(po) = line_contact::maugis_dugdale_line_pull_off(p.lambda) else {
-            bail!("no line-contact pull-off found for lambda = {}", crate::pipeline::table::format_number(p.lambda))
+            bail!("no line-contact pull-off found for lambda = {}", pipeline::table::format_number(p.lambda))
         };
         Ok(Table::new()
             .with_f64("lambda", vec![p.lambda])
             .with_f64("W_md", vec![po.load])
             .with_f64("A_md", vec![po.radius])
             .with_f64("error_estimate", vec![bound(po.error)])
-            .with_f64("W_jkr", vec![crate::theory::line_contact::jkr_pull_off()])
+            .with_f64("W_jkr", vec![physics::theory::line_contact::jkr_pull_off()])
             .with_f64("W_rigid_lj", vec![-line_contact::lj_rigid_pull_off_coefficient() * p.lambda.sqrt()])
             .into())
     }
@@ -448,7 +448,7 @@ impl Kind for LennardJones {
     }
 
     fn run(p: &LennardJonesParams, _: &Inputs) -> Result<Output> {
-        use crate::lennard_jones::{energy, pressure, ALPHA};
+        use physics::lennard_jones::{energy, pressure, ALPHA};
         let z: Vec<f64> = (0..p.n).map(|i| p.z_min + (p.z_max - p.z_min) * i as f64 / (p.n - 1) as f64).collect();
         // The solver's pressure at lambda = 1: h/eps = 1 + alpha H.
         let sigma: Vec<f64> = z.iter().map(|&z| pressure((z - 1.0) / ALPHA, 1.0).0).collect();

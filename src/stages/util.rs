@@ -1,9 +1,9 @@
 //! Utility kinds for exercising the orchestrator (tests, demos): they compute nothing
 //! physical. `util.sleep` waits and returns its parameters; `util.fail` always fails.
 
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
-use crate::pipeline::table::{ColumnData, Table};
 use anyhow::Result;
+use pipeline::kind::{FieldError, Inputs, Kind, Output};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -45,7 +45,7 @@ impl Kind for Sleep {
         // iterations are.
         let end = std::time::Instant::now() + std::time::Duration::from_millis(p.ms);
         while let Some(left) = end.checked_duration_since(std::time::Instant::now()).filter(|d| !d.is_zero()) {
-            crate::numerics::budget::checkpoint();
+            physics::numerics::budget::checkpoint();
             std::thread::sleep(left.min(std::time::Duration::from_millis(10)));
         }
         let x = match p.round {
@@ -98,6 +98,6 @@ impl Kind for Fail {
     }
 }
 
-pub fn register(r: &mut crate::pipeline::kind::Registry) {
+pub fn register(r: &mut pipeline::kind::Registry) {
     r.add::<Sleep>().add::<Fail>();
 }

@@ -5,12 +5,12 @@
 pub mod pulloff;
 
 use super::material::with_material_fields;
-use crate::bem::kernel::Pressure;
-use crate::bem::solver::{self, Mesh, Params, Solution, Start};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::{bound, finite};
+use crate::stages::values::{bound, finite};
 use anyhow::Result;
+use physics::bem::kernel::Pressure;
+use physics::bem::solver::{self, Mesh, Params, Solution, Start};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, thiserror::Error)]
 #[error("the point did not converge ({}: residual {residual:e} after {iterations} iterations)", termination.name())]
 pub struct NotConverged {
-    pub termination: crate::bem::solver::Termination,
+    pub termination: physics::bem::solver::Termination,
     pub residual: f64,
     pub iterations: usize,
 }
@@ -547,7 +547,7 @@ impl Kind for BemMaxima {
     fn run(p: &MaximaParams, _: &Inputs) -> Result<Output> {
         let t0 = std::time::Instant::now();
         let point = p.point();
-        let m = crate::bem::maxima::max_over_speed(
+        let m = physics::bem::maxima::max_over_speed(
             &point.physics(),
             p.V0_range[0],
             p.V0_range[1],

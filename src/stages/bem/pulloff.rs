@@ -2,12 +2,12 @@
 //! (`bem::solver::branch::pull_off`), with the contact at pull-off (thesis Fig. 5.8).
 
 use super::PressureParam;
-use crate::bem::solver::branch::{pull_off, PullOff};
-use crate::bem::solver::{self, ErrorShares, Mesh, Params};
-use crate::pipeline::kind::{Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::finite;
+use crate::stages::values::finite;
 use anyhow::Result;
+use physics::bem::solver::branch::{pull_off, PullOff};
+use physics::bem::solver::{self, ErrorShares, Mesh, Params};
+use pipeline::kind::{Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -8,13 +8,13 @@
 
 use super::map::{MapModel, SnapCriterion};
 use super::{declared_mesh_error, declared_w_mesh_error, snap_bracket};
-use crate::fem::critical::probe;
-use crate::fem::cycle::{load_unload, Snap};
-use crate::fem::mesh_study::{MeshStudy, Outcome};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::finite;
+use crate::stages::values::finite;
 use anyhow::Result;
+use physics::fem::critical::probe;
+use physics::fem::cycle::{load_unload, Snap};
+use physics::fem::mesh_study::{MeshStudy, Outcome};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

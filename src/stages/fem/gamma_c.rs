@@ -7,11 +7,11 @@
 #![allow(non_snake_case)] // parameter names as in the thesis: h_over_R, gamma_over_Eh
 
 use super::map::MapModel;
-use crate::fem::critical::{bracket, probe, retrying};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::finite;
+use crate::stages::values::finite;
 use anyhow::{bail, Result};
+use physics::fem::critical::{bracket, probe, retrying};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

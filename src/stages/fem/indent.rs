@@ -6,15 +6,15 @@
 
 use super::shell::{default_lift_threshold, Stability};
 use super::{declared_mesh_error, declared_w_mesh_error, map, prefixed, shell, snap_bracket, ShellParams};
-use crate::fem::contact::Plate;
-use crate::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Leg};
-use crate::fem::indent::Step;
-use crate::fem::mesh_study::{MeshStudy, Outcome};
-use crate::fem::system::{Base, Model};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::{check, finite};
+use crate::stages::values::{check, finite};
 use anyhow::Result;
+use physics::fem::contact::Plate;
+use physics::fem::cycle::{load_unload, Cycle, CycleOptions, CyclePoint, Leg};
+use physics::fem::indent::Step;
+use physics::fem::mesh_study::{MeshStudy, Outcome};
+use physics::fem::system::{Base, Model};
+use pipeline::kind::{FieldError, Inputs, Kind, Output};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -437,8 +437,8 @@ impl Kind for FemIndent {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::contact::ContactState;
-    use crate::fem::indent::{Step, StepEnd};
+    use physics::fem::contact::ContactState;
+    use physics::fem::indent::{Step, StepEnd};
 
     fn step(delta: f64, force: f64, converged: bool) -> Step {
         let contact = ContactState { force, ..Default::default() };

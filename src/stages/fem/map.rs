@@ -6,13 +6,13 @@
 #![allow(non_snake_case)] // parameter names as in the thesis
 
 use super::shell::{self, Imperfection, Integration, MaterialLaw, Stability};
-use crate::fem::contact::Plate;
-use crate::fem::cycle::{CycleOptions, FirstPass, Passes, Snap, Staggered};
-use crate::fem::mesh::ShellMesh;
-use crate::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
-use crate::fem::system::{Base, Model};
-use crate::pipeline::kind::FieldError;
-use crate::stages::check;
+use crate::stages::values::check;
+use physics::fem::contact::Plate;
+use physics::fem::cycle::{CycleOptions, FirstPass, Passes, Snap, Staggered};
+use physics::fem::mesh::ShellMesh;
+use physics::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
+use physics::fem::system::{Base, Model};
+use pipeline::kind::FieldError;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -209,10 +209,10 @@ impl MapModel {
     pub(super) fn validate(&self, e: &mut Vec<FieldError>) {
         self.imperfection.validate(e, "model.");
         if let SnapCriterion::Thesis(ThesisProcedure { passes: Some(n), .. }) = self.snap {
-            if !(1..=crate::fem::cycle::MAX_PASSES).contains(&n) {
+            if !(1..=physics::fem::cycle::MAX_PASSES).contains(&n) {
                 e.push(FieldError::new(
                     "model.snap.thesis.passes",
-                    format!("passes per step must lie in 1..={}, got {n}", crate::fem::cycle::MAX_PASSES),
+                    format!("passes per step must lie in 1..={}, got {n}", physics::fem::cycle::MAX_PASSES),
                 ));
             }
         }
@@ -247,7 +247,7 @@ impl MapModel {
 
     /// Elements along the meridian at `h_over_r` (given, or the default rule).
     pub(super) fn meridian_elements(&self, h_over_r: f64) -> usize {
-        self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h(h_over_r), self.g0))
+        self.n_meridian.unwrap_or_else(|| physics::fem::mesh::meridian_elements(self.R, self.h(h_over_r), self.g0))
     }
 
     pub(super) fn shell(&self, h_over_r: f64) -> Model {

@@ -12,13 +12,13 @@ pub mod map;
 pub mod profile;
 pub mod shell;
 
-use crate::fem::cycle::Jump;
-use crate::fem::mesh::{default_mesh_rel_error, default_mesh_w_rel_error, ShellMesh};
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
-use crate::pipeline::table::{format_number, ColumnData, Table};
-use crate::stages::check;
+use crate::stages::values::check;
 use anyhow::Result;
 use indent::{default_g0, FemIndent};
+use physics::fem::cycle::Jump;
+use physics::fem::mesh::{default_mesh_rel_error, default_mesh_w_rel_error, ShellMesh};
+use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
+use pipeline::table::{format_number, ColumnData, Table};
 use profile::FemProfile;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -110,7 +110,7 @@ impl ShellParams {
 
     /// Elements along the meridian: as given, else resolving the Lennard-Jones range `g0`.
     pub(super) fn meridian(&self, g0: f64) -> usize {
-        self.n_meridian.unwrap_or_else(|| crate::fem::mesh::meridian_elements(self.R, self.h, g0))
+        self.n_meridian.unwrap_or_else(|| physics::fem::mesh::meridian_elements(self.R, self.h, g0))
     }
 
     /// The memory a cycle of `steps` load steps allocates on this shell's mesh at the
@@ -136,7 +136,7 @@ impl ShellParams {
 /// study's companion on twice the meridian elements alongside.
 pub(super) fn cycle_memory_bytes(n_meridian: usize, n_thickness: usize, steps: usize, mesh_study: bool) -> u64 {
     let states = steps.saturating_mul(3).saturating_add(64);
-    let one = |n: usize| crate::fem::mesh::cycle_memory_bound(n, n_thickness, states);
+    let one = |n: usize| physics::fem::mesh::cycle_memory_bound(n, n_thickness, states);
     let companion = if mesh_study { one(n_meridian.saturating_mul(2)) } else { 0 };
     one(n_meridian).saturating_add(companion)
 }
@@ -181,7 +181,7 @@ impl Kind for FemMesh {
 
     /// The mesh and its table: a few hundred bytes a node.
     fn memory_bytes(p: &ShellParams) -> Option<u64> {
-        let nodes = crate::fem::mesh::node_count(p.meridian(default_g0()), p.n_thickness);
+        let nodes = physics::fem::mesh::node_count(p.meridian(default_g0()), p.n_thickness);
         Some((64u64 << 20).saturating_add(nodes.saturating_mul(256)))
     }
 

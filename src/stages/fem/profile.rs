@@ -5,11 +5,11 @@
 
 use super::indent::{IndentParams, Row};
 use super::prefixed;
-use crate::fem::mesh::ShellMesh;
-use crate::pipeline::kind::{FieldError, Inputs, Kind, Output};
-use crate::pipeline::table::{ColumnData, Table};
-use crate::stages::finite;
+use crate::stages::values::finite;
 use anyhow::Result;
+use physics::fem::mesh::ShellMesh;
+use pipeline::kind::{FieldError, Inputs, Kind, Output};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -2,12 +2,12 @@
 //! its imperfection and the stability test that decides the snap-through, with the
 //! conversion to the physics' types (`fem::material::Law`, `fem::stability::Criterion`).
 
-use crate::fem::element;
-use crate::fem::material::Law;
-use crate::fem::mesh::ShellMesh;
-use crate::fem::stability::{Criterion, LIFT_THRESHOLD};
-use crate::fem::system::Model;
-use crate::pipeline::kind::FieldError;
+use physics::fem::element;
+use physics::fem::material::Law;
+use physics::fem::mesh::ShellMesh;
+use physics::fem::stability::{Criterion, LIFT_THRESHOLD};
+use physics::fem::system::Model;
+use pipeline::kind::FieldError;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -163,7 +163,7 @@ pub fn model(
     mesh: ShellMesh,
     e: f64,
     nu: f64,
-    base: crate::fem::system::Base,
+    base: physics::fem::system::Base,
     law: MaterialLaw,
     integration: Integration,
     imperfection: &Imperfection,

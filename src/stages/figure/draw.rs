@@ -4,8 +4,8 @@
 use super::legend::{draw_legend, least_covering_legend, legend_corner, legend_size, Grid};
 use super::series::Series;
 use super::{FigureParams, LegendPosition, Style};
-use crate::pipeline::table::format_number;
 use anyhow::{bail, Result};
+use pipeline::table::format_number;
 use plotters::prelude::*;
 
 /// Sixteen colours: black, the ten of matplotlib's tab10, navy, maroon, dark green, olive

@@ -8,10 +8,10 @@ mod legend;
 mod series;
 mod template;
 
-use crate::pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, ShownRange};
-use crate::pipeline::table::{ColumnData, Table};
 use anyhow::Result;
 use draw::render;
+use pipeline::kind::{ColumnRead, FieldError, Inputs, Kind, Output, ShownRange};
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use series::{data_series, fit_series, guide_series, Series};
@@ -390,7 +390,7 @@ fn column_units() -> &'static BTreeMap<String, String> {
     })
 }
 
-pub fn register(r: &mut crate::pipeline::kind::Registry) {
+pub fn register(r: &mut pipeline::kind::Registry) {
     r.add::<Figure>();
 }
 

@@ -2,10 +2,10 @@
 //! their error bars and groups), the power-law guide lines, and the fitted lines.
 
 use super::{DataLayer, FitLayer, GuideLayer, Style};
-use crate::pipeline::kind::Inputs;
-use crate::pipeline::table::{format_number, ColumnData, Table};
 use anyhow::Context;
 use anyhow::Result;
+use pipeline::kind::Inputs;
+use pipeline::table::{format_number, ColumnData, Table};
 use std::collections::BTreeMap;
 
 pub(super) struct Series {

@@ -6,8 +6,8 @@
 
 use super::series::kept_rows;
 use super::{FigureParams, Layer};
-use crate::pipeline::kind::{ColumnRead, Inputs};
 use anyhow::{bail, Result};
+use pipeline::kind::{ColumnRead, Inputs};
 use std::collections::BTreeSet;
 
 /// The `{name}` placeholders of `text` (names of letters, digits and `_`), in order.
