@@ -306,15 +306,15 @@ fn kept_rows(q: &Quantity, inputs: &Inputs) -> Result<Vec<(f64, f64, f64)>> {
             }
         })
         .collect::<Result<_>>()?;
-    Ok((0..n)
+    let rows: Vec<(f64, f64, f64)> = (0..n)
         .filter(|&i| passes.iter().all(|p| p[i]))
         .filter(|&i| q.x_min.is_none_or(|a| xs[i] >= a) && q.x_max.is_none_or(|b| xs[i] <= b))
         .map(|i| (xs[i], ys[i], es[i]))
-        .collect::<Vec<_>>())
-    .and_then(|rows| match rows.iter().find(|r| !r.1.is_finite()) {
-        Some(r) => bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0),
-        None => Ok(rows),
-    })
+        .collect();
+    if let Some(r) = rows.iter().find(|r| !r.1.is_finite()) {
+        bail!("`{}` is not finite at x = {} (a division by zero?)", q.column(), r.0);
+    }
+    Ok(rows)
 }
 
 /// The quantity's value.
