@@ -32,12 +32,30 @@ fn main() {
             let t0 = Instant::now();
             let s = solve(&params, Mesh { n, half_length });
             let dt = t0.elapsed().as_secs_f64();
-            report("fixed", n, dt, s.friction().mu_star, f64::NAN, s.iterations, s.factorizations, s.converged());
+            report(
+                "fixed",
+                n,
+                dt,
+                s.friction().mu_star,
+                f64::NAN,
+                s.cost.iterations,
+                s.cost.factorizations,
+                s.converged(),
+            );
         }
         let t0 = Instant::now();
         let (s, est) = solve_to_tolerance(&params, starting_mesh(&params, 1e-3), 1e-3, 16_000);
         let dt = t0.elapsed().as_secs_f64();
-        report("rel 1e-3", s.mesh.n, dt, s.friction().mu_star, est, s.iterations, s.factorizations, s.converged());
+        report(
+            "rel 1e-3",
+            s.mesh.n,
+            dt,
+            s.friction().mu_star,
+            est,
+            s.cost.iterations,
+            s.cost.factorizations,
+            s.converged(),
+        );
         println!(
             "{lambda:>6} {w:>5} {:>8} {:>6} {:>9} {mu_ref:>12.6}   (reference, L = {half_length:.2})",
             "richard", "", ""

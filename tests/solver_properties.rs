@@ -120,7 +120,7 @@ proptest! {
             prop_assert!(f.mu_star.is_finite() && f.mu_star >= -1e-9, "mu* = {}", f.mu_star);
             prop_assert!((s.load() - p.w).abs() <= 1e-6 * p.w.abs(), "load {} vs W {}", s.load(), p.w);
         } else {
-            prop_assert!(s.iterations > 0);
+            prop_assert!(s.cost.iterations > 0);
         }
     }
 

@@ -336,7 +336,7 @@ impl Kind for BemSweep {
             .with_f64("p_min_bar", vec![p_min])
             .with("converged", ColumnData::Bool(vec![ok]))
             .with("termination", ColumnData::Str(vec![termination.to_string()]))
-            .with("iterations", ColumnData::I64(vec![s.iterations as i64]))
+            .with("iterations", ColumnData::I64(vec![s.cost.iterations as i64]))
             .with_f64("residual", vec![bound(s.residual)])
             .with_f64("error_estimate", vec![bound(estimate)])
             .with("n", ColumnData::I64(vec![s.mesh.n as i64]))
@@ -405,9 +405,12 @@ impl Kind for BemProfile {
         let t0 = std::time::Instant::now();
         let (s, estimate, _) = p.solve(inputs)?;
         if !s.converged() {
-            return Err(
-                NotConverged { termination: s.termination, residual: s.residual, iterations: s.iterations }.into()
-            );
+            return Err(NotConverged {
+                termination: s.termination,
+                residual: s.residual,
+                iterations: s.cost.iterations,
+            }
+            .into());
         }
         let two_a = 2.0 * s.mesh.a();
         let integrand: Vec<f64> = (0..s.p.len()).map(|j| s.p[j] * (s.u_edges[j + 1] - s.u_edges[j]) / two_a).collect();

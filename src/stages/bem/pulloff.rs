@@ -92,7 +92,7 @@ impl Kind for BemPullOff {
         // The search on a mesh of n elements (None if the starting solve fails).
         let search = |n: usize| -> (Option<PullOff>, usize) {
             let s = solver::solve(&start, Mesh { n, ..first });
-            (s.converged().then(|| pull_off(&s, APPROACH_TOL)), s.iterations)
+            (s.converged().then(|| pull_off(&s, APPROACH_TOL)), s.cost.iterations)
         };
         // The mesh's share: Richardson at second order (the refinement stops on it).
         let estimate_of = |f: &Option<PullOff>, c: &Option<PullOff>| match (f, c) {
@@ -132,8 +132,8 @@ impl Kind for BemPullOff {
                 r.solution.adhered_half_width().unwrap_or(0.0),
                 r.solution.contact_edges().unwrap_or((0.0, 0.0)),
                 r.solution.friction().mu_star,
-                r.evaluations,
-                r.iterations,
+                r.cost.newton_solves,
+                r.cost.iterations,
             ),
             None => (0.0, 0.0, (0.0, 0.0), 0.0, 0, start_iterations),
         };

@@ -57,7 +57,13 @@ pub fn max_over_speed(
             solve(&Params { v0, ..base.clone() }, near)
         };
         let f = s.friction();
-        log.borrow_mut().push(Solve { v0, friction: f, converged: s.converged(), estimate, iterations: s.iterations });
+        log.borrow_mut().push(Solve {
+            v0,
+            friction: f,
+            converged: s.converged(),
+            estimate,
+            iterations: s.cost.iterations,
+        });
         let value = if s.converged() && f.mu_star.is_finite() { f.mu_star } else { f64::NEG_INFINITY };
         if s.converged() {
             solved.borrow_mut().push(s);

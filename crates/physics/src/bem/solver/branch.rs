@@ -22,7 +22,7 @@
 
 use super::newton::PathSolver;
 use super::params::TOLERANCE;
-use super::solution::{Solution, Termination};
+use super::solution::{Cost, Solution, Termination};
 use super::system::Control;
 use crate::lennard_jones;
 use crate::numerics::roots::golden_section_max;
@@ -46,8 +46,8 @@ struct Walk {
     states: Vec<Solution>,
     step0: f64,
     step: f64,
-    evaluations: usize,
-    iterations: usize,
+    /// The cost of the walk's solves (of `start` not included).
+    cost: Cost,
     path: Vec<[f64; 2]>,
 }
 
@@ -78,8 +78,7 @@ impl Walk {
             states: vec![start.clone()],
             step0,
             step: step0,
-            evaluations: 0,
-            iterations: 0,
+            cost: Cost::default(),
             path: vec![point(start)],
         }
     }
@@ -90,8 +89,7 @@ impl Walk {
 
     fn solve(&mut self, control: Control, guess: &[f64], delta0: f64) -> Solution {
         let s = self.solver.solve(control, guess, delta0);
-        self.evaluations += 1;
-        self.iterations += s.iterations;
+        self.cost += s.cost;
         s
     }
 
@@ -148,9 +146,8 @@ pub struct PullOff {
     /// smallest load reached) or if no state inside the bracket converged (`load` is then
     /// the bracket's centre).
     pub converged: bool,
-    /// Newton solves and iterations spent.
-    pub evaluations: usize,
-    pub iterations: usize,
+    /// What the walk and the search cost (the start's not included).
+    pub cost: Cost,
     /// The accepted states of the walk: [approach, W], the approach of `Solution::approach`.
     pub path: Vec<[f64; 2]>,
 }
@@ -197,14 +194,7 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
     let bracket = bracket.filter(|(_, low, _)| walk.current().load() >= low.load());
     let Some((before, centre, after)) = bracket else {
         let last = walk.current().clone();
-        return PullOff {
-            load: last.load(),
-            solution: last,
-            converged: false,
-            evaluations: walk.evaluations,
-            iterations: walk.iterations,
-            path: walk.path,
-        };
+        return PullOff { load: last.load(), solution: last, converged: false, cost: walk.cost, path: walk.path };
     };
     // Golden-section search for the minimum load along the path: arclength s from the
     // centre along its central secant, between the two neighbours.
@@ -245,14 +235,7 @@ pub fn pull_off(start: &Solution, tol: f64) -> PullOff {
         hi,
         tol * step0,
     );
-    PullOff {
-        load: best.load(),
-        solution: best,
-        converged: refined,
-        evaluations: walk.evaluations,
-        iterations: walk.iterations,
-        path: walk.path,
-    }
+    PullOff { load: best.load(), solution: best, converged: refined, cost: walk.cost, path: walk.path }
 }
 
 /// Regula falsi iterations of `along_the_path`.
@@ -262,10 +245,10 @@ const PATH_ROOT_ITERATIONS: usize = 60;
 /// bracket `w`), found along the path between them: the arclength from `above` along their
 /// secant is the unknown, each trial solved under path control (regular, also where the
 /// lattice of the crack front makes load control stall), until the load is `w` to
-/// `TOLERANCE`; then polished by Newton under load control from there. Measured where
-/// load control from the interpolated guess fails: lambda = 2.19, k = 0.5, 95 % of the
-/// pull-off. None if the bracket cannot be narrowed (a trial off the branch or not
-/// converged).
+/// `TOLERANCE`; then polished by Newton under load control from there. Load control from
+/// the interpolated guess fails near some pull-offs (the case of
+/// `tests/solver_properties.rs`, lambda = 2.19, k = 0.5). None if the bracket cannot be
+/// narrowed (a trial off the branch or not converged).
 fn along_the_path(walk: &mut Walk, above: &Solution, below: &Solution, w: f64) -> Option<Solution> {
     let (t, len) = direction(point(above), point(below));
     let origin = point(above);
@@ -282,14 +265,15 @@ fn along_the_path(walk: &mut Walk, above: &Solution, below: &Solution, w: f64) -
         }
         let g = r.load() - w;
         if g.abs() <= TOLERANCE {
-            let mut polished = walk.solver.solve_load(w, &r);
+            // Its cost is its own: the path's trials are the walk's.
+            let polished = walk.solver.solve_load(w, &r);
             if polished.converged() && on_branch(above, &polished) {
-                polished.iterations += r.iterations;
                 return Some(polished);
             }
-            // Load control stalls even here: the path state, whose load is w to TOLERANCE.
+            // Load control stalls even here: the path state, whose load is w to TOLERANCE
+            // (its cost the failed polish's: the path state's is the walk's).
             let residual = r.residual.max(g.abs());
-            return Some(Solution { params: r.params.with_load(w), residual, ..r });
+            return Some(Solution { params: r.params.with_load(w), residual, cost: polished.cost, ..r });
         }
         if g > 0.0 {
             (a, ga, sa) = (s, g, r);
@@ -334,17 +318,24 @@ pub fn descend_to_load(start: &Solution, w: f64) -> Solution {
             guess.delta = above.delta + t * (below.delta - above.delta);
             let mut s = walk.solver.solve_load(w, &guess);
             if !(s.converged() && on_branch(&above, &s)) {
-                s = along_the_path(&mut walk, &above, &below, w).unwrap_or_else(|| {
-                    s.stop(Termination::OffBranch);
-                    s
-                });
+                let failed = s.cost;
+                s = match along_the_path(&mut walk, &above, &below, w) {
+                    Some(mut found) => {
+                        found.cost += failed;
+                        found
+                    }
+                    None => {
+                        s.stop(Termination::OffBranch);
+                        s
+                    }
+                };
             }
-            s.iterations += walk.iterations;
+            s.cost += walk.cost;
             return s;
         }
     }
     let mut last = walk.current().clone();
-    last.iterations = walk.iterations;
+    last.cost = walk.cost;
     last.stop(Termination::BeyondPullOff);
     last.residual = (last.load() - w).abs();
     last

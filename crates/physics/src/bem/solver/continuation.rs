@@ -6,7 +6,7 @@ use super::super::kernel::MeshKernel;
 use super::newton::{initial_state, newton, newton_limited, Limits};
 use super::params::{mesh_levels, Mesh, Params};
 use super::precondition::Preconditioner;
-use super::solution::Solution;
+use super::solution::{Cost, Solution};
 use super::system::{Control, Operator};
 use crate::lennard_jones;
 use std::f64::consts::PI;
@@ -17,8 +17,8 @@ use std::f64::consts::PI;
 /// or, if that fails or would bring a surface through the other, from the last state; a
 /// failed step is retried with the square root of the factor, down to a factor of 1.001,
 /// and the factor grows again (squared, up to `max_factor`) after two successes in a row.
-/// Returns the solution at `to` (converged or the failed last trial) and the Newton
-/// iterations spent.
+/// Returns the solution at `to` (converged or the failed last trial) and the cost of the
+/// steps taken (that of `start` not included).
 pub(super) fn continue_geometric(
     from: f64,
     to: f64,
@@ -26,9 +26,9 @@ pub(super) fn continue_geometric(
     max_factor: f64,
     start: Solution,
     mut step: impl FnMut(f64, &[f64], f64) -> Solution,
-) -> (Solution, usize) {
+) -> (Solution, Cost) {
     let max_factor = max_factor.max(factor);
-    let mut iterations = 0;
+    let mut spent = Cost::default();
     let mut value = from;
     let mut last = start;
     let mut previous: Option<(f64, Vec<f64>, f64)> = None;
@@ -53,10 +53,10 @@ pub(super) fn continue_geometric(
             Some((h, d)) => step(next, h, *d),
             None => step(next, &last.h, last.delta),
         };
-        iterations += trial.iterations;
+        spent += trial.cost;
         if !trial.converged() && predicted.is_some() {
             trial = step(next, &last.h, last.delta);
-            iterations += trial.iterations;
+            spent += trial.cost;
         }
         if trial.converged() {
             previous = Some((value, std::mem::take(&mut last.h), last.delta));
@@ -70,11 +70,11 @@ pub(super) fn continue_geometric(
             successes = 0;
             factor = factor.sqrt();
             if factor < 1.001 {
-                return (trial, iterations);
+                return (trial, spent);
             }
         }
     }
-    (last, iterations)
+    (last, spent)
 }
 
 /// The largest factor of one step of the speed continuation at lambda up to `LAMBDA_START`
@@ -98,8 +98,7 @@ pub(super) const LAMBDA_START: f64 = 0.3;
 /// reaches lambda that the single mesh does not (docs/tuning.md). If that path fails, the
 /// same path on `mesh` alone, then the other order (lambda at V = 0, then the speed) on it,
 /// are tried. On coarse meshes at large lambda the discrete crack front has folds (lattice
-/// trapping): raising lambda at V = 0 can end next to one, where any change of speed snaps;
-/// measured at lambda = 10, W = 0.1.
+/// trapping): raising lambda at V = 0 can end next to one, where any change of speed snaps.
 ///
 /// A tensile load (W < 0) is reached from the same point at load max(|W|, 0.1) by walking
 /// down the branch by pseudo-arclength (`branch::descend_to_load`), so that the state
@@ -109,8 +108,7 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
         let start = solve(&params.with_load(params.w.abs().max(0.1)), mesh);
         let mut s = if start.converged() { super::branch::descend_to_load(&start, params.w) } else { start.clone() };
         s.params = params.clone();
-        s.iterations += start.iterations;
-        s.factorizations += start.factorizations;
+        s.cost += start.cost;
         return s;
     }
     let mut pre = Preconditioner::default();
@@ -118,23 +116,21 @@ pub fn solve(params: &Params, mesh: Mesh) -> Solution {
     let mut s = solve_along(params, &levels, true, &mut pre);
     if !s.converged() && levels.len() > 1 {
         // The same path on the final mesh alone.
-        let first = s.iterations;
+        let failed = s.cost;
         s = solve_along(params, &[mesh], true, &mut pre);
-        s.iterations += first;
+        s.cost += failed;
     }
     if !s.converged() {
-        let first = s.iterations;
+        let failed = s.cost;
         s = solve_along(params, &[mesh], false, &mut pre);
-        s.iterations += first;
+        s.cost += failed;
     }
-    s.factorizations = pre.factorizations;
     s
 }
 
 /// The largest lambda a level's elements resolve for the continuation: cohesive zone
-/// pi/(8 lambda^2) at least a quarter of an element (measured at W = 0.1, k = 0.1: lambda = 12
-/// continues on elements of 0.011 and refines in 3-10 Newton iterations per level; lambda =
-/// 24 on elements of 0.022 does not refine).
+/// pi/(8 lambda^2) at least a quarter of an element: coarser, the refinement from that level
+/// fails (docs/tuning.md, "BEM continuation").
 pub(super) fn lambda_resolved(mesh: Mesh) -> f64 {
     (PI / (4.0 * mesh.a())).sqrt()
 }
@@ -152,6 +148,9 @@ pub(super) fn interpolated_newton(
 
 /// Newton for `params` on `mesh` from the linear interpolation of the gap `h` at the nodes
 /// `xs` (constant beyond them) and the approach `delta`.
+///
+/// Its arguments: the point, the start (nodes, gaps, approach), the mesh, the limit and
+/// the preconditioner the path shares.
 pub(super) fn started_newton(
     params: &Params,
     xs: &[f64],
@@ -197,7 +196,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
     let op0 = Operator::new(coarsest, lam0, params.k, &params.spectrum, 0.0, params.pressure);
     let (h0, d0) = initial_state(&op0, &at(lam0, 0.0));
     let first = newton(&op0, &at(lam0, 0.0), Control::Load(params.w), h0, d0, 100, pre);
-    let mut iterations = first.iterations;
+    let mut spent = first.cost;
     let mut sol = first;
     let v_target = params.v();
     let stages: [bool; 2] = if speed_first { [true, false] } else { [false, true] };
@@ -213,8 +212,8 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
             let (s, it) = if v_target <= v_start {
                 let op = Operator::new(mesh, lambda, params.k, &params.spectrum, v_target, params.pressure);
                 let s = newton(&op, &at(lambda, v_target), Control::Load(params.w), sol.h.clone(), sol.delta, 40, pre);
-                let it = s.iterations;
-                (s, it)
+                let cost = s.cost;
+                (s, cost)
             } else {
                 // Long steps only at the soft start's lambda: at large lambda a change of speed
                 // can snap the crack front across a lattice fold.
@@ -225,14 +224,14 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                 })
             };
             sol = s;
-            iterations += it;
+            spent += it;
         } else {
             // Lambda, level by level: up to what each level resolves, then onto the next.
             let v = sol.params.v();
             for (i, &mesh) in levels.iter().enumerate() {
                 if i > 0 {
                     sol = interpolated_newton(&sol, mesh, 40, pre);
-                    iterations += sol.iterations;
+                    spent += sol.cost;
                     if !sol.converged() {
                         break;
                     }
@@ -257,7 +256,7 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
                             )
                         });
                     sol = s;
-                    iterations += it;
+                    spent += it;
                     if !sol.converged() {
                         break;
                     }
@@ -266,6 +265,6 @@ pub(super) fn solve_along(params: &Params, levels: &[Mesh], speed_first: bool, p
         }
     }
     sol.params = params.clone();
-    sol.iterations = iterations;
+    sol.cost = spent;
     sol
 }

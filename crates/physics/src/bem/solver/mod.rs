@@ -46,7 +46,7 @@ pub use refinement::{
     refine, solve_to_tolerance, solve_to_tolerance_from, solve_to_tolerance_shares, solve_with_estimate, ErrorShares,
     DOMAIN_SAFETY, MESH_SAFETY,
 };
-pub use solution::{Friction, Solution, Start, Termination};
+pub use solution::{Cost, Friction, Solution, Start, Termination};
 pub use system::Control;
 
 #[cfg(test)]

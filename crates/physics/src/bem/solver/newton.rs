@@ -4,7 +4,7 @@
 
 use super::params::Params;
 use super::precondition::Preconditioner;
-use super::solution::{Solution, Termination};
+use super::solution::{Cost, Solution, Termination};
 use super::system::{Control, Operator, System};
 use crate::lennard_jones;
 use crate::lennard_jones::ALPHA;
@@ -12,6 +12,9 @@ use crate::theory::line_contact::jkr_half_width;
 
 /// Newton's method from `h0`, `delta0`. Returns the solution (converged or not).
 /// Under path control the solution's load is the one carried, at the same speed V.
+///
+/// Its arguments: the operator and the point's parameters, the control, the start (h0,
+/// delta0), the limit and the preconditioner the path shares across its solves.
 pub(super) fn newton(
     op: &Operator,
     params: &Params,
@@ -37,6 +40,9 @@ pub(super) struct Limits {
 /// A line-search step this short counts towards `Limits::stall`.
 pub(super) const STALL_STEP: f64 = 1.0 / 16.0;
 
+/// `newton` with the stall limit too. Its arguments: the operator and the point's
+/// parameters, the control, the start (h0, delta0), the limits and the preconditioner the
+/// path shares across its solves.
 pub(super) fn newton_limited(
     op: &Operator,
     params: &Params,
@@ -47,6 +53,7 @@ pub(super) fn newton_limited(
     pre: &mut Preconditioner,
 ) -> Solution {
     let max_iter = limits.iterations;
+    let factorizations_before = pre.factorizations;
     let mut stalled = 0;
     let tol = params.newton_tol;
     let n = op.mesh.n;
@@ -122,8 +129,7 @@ pub(super) fn newton_limited(
         u_edges,
         delta,
         termination,
-        iterations,
-        factorizations: pre.factorizations,
+        cost: Cost { newton_solves: 1, iterations, factorizations: pre.factorizations - factorizations_before },
         residual: ev.norm,
     }
 }

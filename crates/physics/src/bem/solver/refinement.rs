@@ -6,7 +6,7 @@
 use super::continuation::{interpolated_newton, solve, started_newton};
 use super::params::{domain_rel_error, Mesh, Params};
 use super::precondition::{nested_ratio, ActiveLu, Preconditioner, DROP, TWO_GRID_MIN_N};
-use super::solution::{Solution, Start};
+use super::solution::{Cost, Solution, Start};
 use super::system::{Control, Operator, System};
 use crate::numerics::extrapolation;
 
@@ -102,7 +102,10 @@ pub(super) fn refine_carrying(coarse: &Solution, mesh: Mesh, carried: &mut Optio
             pre.factorizations += 1;
         }
     }
-    let s = interpolated_newton(coarse, mesh, 40, &mut pre);
+    // The coarse LU factored here is part of the refinement's cost.
+    let coarse_lu = pre.factorizations;
+    let mut s = interpolated_newton(coarse, mesh, 40, &mut pre);
+    s.cost.factorizations += coarse_lu;
     *carried = if s.converged() { pre.active } else { None };
     or_continuation(s, mesh)
 }
@@ -114,15 +117,14 @@ fn coarsen(fine: &Solution, mesh: Mesh) -> Solution {
     or_continuation(interpolated_newton(fine, mesh, 40, &mut Preconditioner::default()), mesh)
 }
 
-/// `s` if it converged, else the full continuation on `mesh` (its iterations and
-/// factorisations counting those of `s`).
+/// `s` if it converged, else the full continuation on `mesh` (its cost counting that of
+/// `s`).
 fn or_continuation(s: Solution, mesh: Mesh) -> Solution {
     if s.converged() {
         return s;
     }
     let mut full = solve(&s.params, mesh);
-    full.iterations += s.iterations;
-    full.factorizations += s.factorizations;
+    full.cost += s.cost;
     full
 }
 
@@ -146,8 +148,8 @@ impl ErrorShares {
 /// the number of elements (same domain) until the Richardson estimate is at most
 /// `rel_tol` |mu*|, from two levels and then from three (`observed_estimate`), or the next
 /// mesh would exceed `n_max`. Each refinement starts from
-/// the previous solution and reuses it as the coarse one. `iterations` and
-/// `factorizations` of the result count the whole path (with the quarter-size solve the
+/// the previous solution and reuses it as the coarse one. The result's `cost` counts the
+/// whole path (with the quarter-size solve the
 /// three-level estimate needs when the refinement stopped at its first two levels). The
 /// error estimate is `ErrorShares::reported`.
 pub fn solve_to_tolerance(params: &Params, mesh: Mesh, rel_tol: f64, n_max: usize) -> (Solution, f64) {
@@ -195,7 +197,7 @@ fn refine_to(
         ),
         None => solve(params, first),
     };
-    let (mut iterations, mut factorizations) = (coarse.iterations, coarse.factorizations);
+    let mut spent = coarse.cost;
     let mut carried = None;
     let mut next = |from: &Solution, n: usize| {
         let mut s = if from.converged() {
@@ -204,17 +206,15 @@ fn refine_to(
             carried = None;
             solve(params, Mesh { n, ..mesh })
         };
-        iterations += s.iterations;
-        factorizations += s.factorizations;
-        s.iterations = iterations;
-        s.factorizations = factorizations;
+        spent += s.cost;
+        s.cost = spent;
         s
     };
     let mut fine = next(&coarse, mesh.n);
     // The level before `coarse`, once the refinement has made one, or restricted from
     // `coarse` when it stopped at its first two; the latter's Newton counts.
     let mut coarser: Option<Solution> = None;
-    let mut restricted = (0, 0);
+    let mut restricted = Cost::default();
     loop {
         let mu = fine.friction().mu_star.abs();
         let two_level = richardson(&fine, &coarse);
@@ -231,7 +231,7 @@ fn refine_to(
             }
             if coarser.is_none() && !hopeless && fine.converged() && coarse.mesh.n / 2 >= 8 {
                 let c = coarsen(&coarse, Mesh { n: coarse.mesh.n / 2, ..mesh });
-                restricted = (restricted.0 + c.iterations, restricted.1 + c.factorizations);
+                restricted += c.cost;
                 coarser = Some(c);
             }
             // The mesh's share from three levels. Where they show the sequence not yet
@@ -239,8 +239,7 @@ fn refine_to(
             // refined further while n_max allows.
             let estimate = observed_estimate(&fine, &coarse, coarser.as_ref());
             if hopeless || capped || estimate <= rel_tol * mu {
-                fine.iterations += restricted.0;
-                fine.factorizations += restricted.1;
+                fine.cost += restricted;
                 return (fine, ErrorShares { mesh: estimate, domain });
             }
         }

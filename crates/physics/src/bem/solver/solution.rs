@@ -30,11 +30,41 @@ pub struct Solution {
     pub delta: f64,
     /// Why the solver stopped (`converged` derives from it).
     pub termination: Termination,
-    /// Newton iterations over the whole continuation path.
-    pub iterations: usize,
-    /// LU factorisations of the Jacobian (the rest of the linear solves are GMRES).
-    pub factorizations: usize,
+    /// What reaching it cost over the whole path, the fallbacks tried before included.
+    pub cost: Cost,
     pub residual: f64,
+}
+
+/// What a solve cost: the Newton solves run, their iterations, and the LU factorisations
+/// of the Jacobian (the rest of the linear solves are GMRES). A path or a fallback adds the
+/// cost of each solve it runs (`+=`), so a result carries all that was spent to reach it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Cost {
+    pub newton_solves: usize,
+    pub iterations: usize,
+    pub factorizations: usize,
+}
+
+impl std::ops::AddAssign for Cost {
+    fn add_assign(&mut self, other: Cost) {
+        self.newton_solves += other.newton_solves;
+        self.iterations += other.iterations;
+        self.factorizations += other.factorizations;
+    }
+}
+
+impl std::ops::Add for Cost {
+    type Output = Cost;
+    fn add(mut self, other: Cost) -> Cost {
+        self += other;
+        self
+    }
+}
+
+impl std::iter::Sum for Cost {
+    fn sum<I: Iterator<Item = Cost>>(costs: I) -> Cost {
+        costs.fold(Cost::default(), |a, b| a + b)
+    }
 }
 
 /// Why the solver of a point stopped.

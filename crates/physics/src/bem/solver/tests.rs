@@ -3,7 +3,7 @@ use super::newton::{initial_state, newton_limited, Limits};
 use super::params::*;
 use super::precondition::*;
 use super::refinement::*;
-use super::solution::Solution;
+use super::solution::{Cost, Solution};
 use super::system::*;
 use crate::numerics::gmres::gmres;
 use crate::theory::line_contact::{jkr_half_width, jkr_pull_off};
@@ -120,7 +120,7 @@ fn elastic_point_converges_and_carries_its_load() {
     let params = Params::sls(1.0, 1.0, 0.1, 0.0);
     let mesh = Mesh { n: 200, half_length: 6.0 };
     let s = solve(&params, mesh);
-    assert!(s.converged(), "residual {} after {}", s.residual, s.iterations);
+    assert!(s.converged(), "residual {} after {}", s.residual, s.cost.iterations);
     assert!((s.load() - 1.0).abs() < 1e-6);
     // Elastic and symmetric: no friction.
     assert!(s.friction().mu_star.abs() < 1e-8, "{:?}", s.friction());
@@ -144,7 +144,12 @@ fn newton_stops_at_the_requested_tolerance() {
     for (newton_tol, mu_tol) in [(1e-3, 5e-4), (1e-5, 1e-5)] {
         let loose = solve(&Params { newton_tol, ..Params::sls(1.0, 1.0, 0.1, 1.0) }, mesh);
         assert!(loose.converged() && loose.residual <= newton_tol && loose.residual > TOLERANCE, "{}", loose.residual);
-        assert!(loose.iterations < tight.iterations, "{} vs {}", loose.iterations, tight.iterations);
+        assert!(
+            loose.cost.iterations < tight.cost.iterations,
+            "{} vs {}",
+            loose.cost.iterations,
+            tight.cost.iterations
+        );
         let b = loose.friction().mu_star;
         assert!((a - b).abs() < mu_tol * a, "{a} vs {b} at newton_tol {newton_tol}");
         assert!((loose.load() - 1.0).abs() <= newton_tol, "load {}", loose.load());
@@ -165,19 +170,19 @@ fn a_refinement_is_preconditioned_by_a_coarse_meshs_lu() {
     let mut single = Preconditioner { single_grid: true, ..Preconditioner::default() };
     let direct = interpolated_newton(&coarse, fine, 40, &mut single);
     let own = single.active.as_ref().unwrap();
-    assert!(direct.converged() && direct.factorizations >= 1 && own.n == 2400);
+    assert!(direct.converged() && direct.cost.factorizations >= 1 && own.n == 2400);
     let same = |s: &Solution| {
         let (a, b) = (s.friction().mu_star, direct.friction().mu_star);
         assert!((a - b).abs() < 1e-9 * a.abs(), "{a} vs {b}");
         assert!((s.delta - direct.delta).abs() < 1e-9, "{} vs {}", s.delta, direct.delta);
     };
     let two_grid = refine(&coarse, fine);
-    assert!(two_grid.converged() && two_grid.factorizations == 1, "{} LU", two_grid.factorizations);
+    assert!(two_grid.converged() && two_grid.cost.factorizations == 1, "{} LU", two_grid.cost.factorizations);
     same(&two_grid);
     let mut pre = Preconditioner::default();
     let restricted = interpolated_newton(&coarse, fine, 40, &mut pre);
     let lu = pre.active.as_ref().unwrap();
-    assert!(restricted.converged() && restricted.factorizations >= 1, "{} LU", restricted.factorizations);
+    assert!(restricted.converged() && restricted.cost.factorizations >= 1, "{} LU", restricted.cost.factorizations);
     assert_eq!(lu.n, 1200);
     assert!(lu.idx.len() * 10 < own.idx.len() * 6, "{} vs {} active nodes", lu.idx.len(), own.idx.len());
     same(&restricted);
@@ -195,10 +200,10 @@ fn a_carried_lu_preconditions_refinements_four_and_eight_times_finer() {
     for (n, lus) in [(2000, 1), (4000, 0), (8000, 0)] {
         let prev = s.clone();
         s = refine_carrying(&prev, Mesh { n, ..prev.mesh }, &mut carried);
-        assert!(s.converged() && s.factorizations == lus, "n = {n}: {} LU", s.factorizations);
+        assert!(s.converged() && s.cost.factorizations == lus, "n = {n}: {} LU", s.cost.factorizations);
         assert_eq!(carried.as_ref().map(|a| a.n), Some(1000));
         let fresh = refine(&prev, s.mesh);
-        assert!(fresh.converged() && fresh.factorizations == 1);
+        assert!(fresh.converged() && fresh.cost.factorizations == 1);
         let (a, b) = (s.friction().mu_star, fresh.friction().mu_star);
         assert!((a - b).abs() < 1e-9 * a.abs(), "n = {n}: {a} vs {b}");
     }
@@ -303,4 +308,31 @@ fn the_refinement_goes_on_where_three_levels_show_the_sequence_not_yet_asymptoti
     let limit = 146.226;
     assert!((mu - limit).abs() <= shares.mesh * 1.5, "mu* {mu}, {shares:?}");
     assert!((mu - 146.1937).abs() < 1e-3, "{mu}");
+}
+
+#[test]
+fn a_solutions_cost_counts_every_newton_solve_and_lu_of_its_path() {
+    // Every LU is factored inside a Newton solve, so the cost a continuation sums from its
+    // solves is what its preconditioner counted; a tensile point (W < 0) is reached from
+    // the compressive one at |W| and a walk down the branch, so it carries that point's
+    // whole cost and at least one more solve.
+    let params = Params::sls(1.0, 0.1, 0.1, 0.3);
+    let mesh = Mesh { n: 400, half_length: 6.0 };
+    let mut pre = Preconditioner::default();
+    let along = solve_along(&params, &mesh_levels(&params, mesh), true, &mut pre);
+    assert!(along.converged());
+    assert_eq!(along.cost.factorizations, pre.factorizations);
+    assert!(pre.factorizations >= 1);
+    assert!(along.cost.newton_solves >= 2, "{:?}", along.cost);
+    assert!(along.cost.iterations >= along.cost.newton_solves, "{:?}", along.cost);
+    let compressive = solve(&params, mesh);
+    let tensile = solve(&params.with_load(-0.05), mesh);
+    assert!(compressive.converged() && tensile.converged());
+    let walk = Cost {
+        newton_solves: tensile.cost.newton_solves - compressive.cost.newton_solves,
+        iterations: tensile.cost.iterations - compressive.cost.iterations,
+        factorizations: tensile.cost.factorizations - compressive.cost.factorizations,
+    };
+    assert!(walk.newton_solves >= 1 && walk.iterations >= 1, "{walk:?}");
+    assert_eq!(compressive.cost + walk, tensile.cost);
 }
