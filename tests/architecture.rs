@@ -369,3 +369,161 @@ fn the_root_crate_names_the_crates_it_uses() {
     }
     assert!(files.len() > 20 && found.is_empty(), "{found:?}");
 }
+
+/// The source files outside tests: the crates' `src` trees, test modules' files aside.
+fn sources() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for dir in ["src", "crates/pipeline/src", "crates/physics/src", "crates/python/src"] {
+        rust_files(Path::new(dir), &mut files);
+    }
+    files
+        .retain(|f| f.file_name().is_none_or(|n| n != "tests.rs") && !f.components().any(|c| c.as_os_str() == "tests"));
+    files
+}
+
+/// The number of parameters in a parameter list (the text between its parentheses),
+/// `self` not counted: the commas at depth 0, where generics, tuples, closures' types and
+/// slices open a level.
+fn parameter_count(list: &str) -> usize {
+    let list = list.trim().trim_end_matches(',');
+    if list.trim().is_empty() {
+        return 0;
+    }
+    let mut depth = 0i32;
+    let mut count = 1;
+    let mut prev = ' ';
+    for c in list.chars() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            '<' => depth += 1,
+            // `->` in an `impl Fn(..) -> T` is no closing bracket.
+            '>' if prev != '-' => depth -= 1,
+            ')' | ']' | '}' => depth -= 1,
+            ',' if depth == 0 => count += 1,
+            _ => {}
+        }
+        prev = c;
+    }
+    let first = list.split(',').next().unwrap_or("");
+    count - usize::from(first.contains("self"))
+}
+
+/// The functions of a file outside its test module with more than `limit` parameters:
+/// (line, name, count, whether the doc comment above says why, naming its arguments).
+fn long_parameter_lists(path: &Path, limit: usize) -> Vec<(usize, String, usize, bool)> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let t = line.trim_start();
+        if t.starts_with("//") {
+            continue;
+        }
+        let Some(at) = t.find("fn ") else { continue };
+        if at > 0
+            && !t[..at].split_whitespace().all(|w| w.starts_with("pub") || ["const", "unsafe", "async"].contains(&w))
+        {
+            continue;
+        }
+        let rest = &t[at + 3..];
+        let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        // The parameter list: from the first `(` after the name to its match, across lines.
+        let joined = lines[i..(i + 40).min(lines.len())].join("\n");
+        let from = joined.find(&format!("fn {name}")).unwrap() + 3 + name.len();
+        let Some(open) = joined[from..].find('(').map(|k| from + k) else { continue };
+        let mut depth = 0;
+        let mut close = None;
+        for (k, c) in joined[open..].char_indices() {
+            match c {
+                '(' => depth += 1,
+                ')' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        close = Some(open + k);
+                        break;
+                    }
+                }
+                _ => {}
+            }
+        }
+        let Some(close) = close else { continue };
+        let count = parameter_count(&joined[open + 1..close]);
+        if count > limit {
+            let doc: Vec<&str> = lines[..i]
+                .iter()
+                .rev()
+                .map(|l| l.trim())
+                .take_while(|l| l.starts_with("///") || l.starts_with("#["))
+                .filter(|l| l.starts_with("///"))
+                .collect();
+            let reasoned = doc.iter().any(|l| l.to_lowercase().contains("arguments"));
+            out.push((i + 1, name, count, reasoned));
+        }
+    }
+    out
+}
+
+#[test]
+fn the_parameter_counter_counts_top_level_parameters() {
+    assert_eq!(parameter_count(""), 0);
+    assert_eq!(parameter_count("&self"), 0);
+    assert_eq!(parameter_count("&mut self, a: usize,"), 1);
+    assert_eq!(
+        parameter_count("a: BTreeMap<String, Vec<(f64, f64)>>, f: impl Fn(f64, f64) -> f64, t: (&[f64], f64)"),
+        3
+    );
+}
+
+#[test]
+fn a_function_of_more_than_six_parameters_says_why_in_its_doc_comment() {
+    const LIMIT: usize = 6;
+    let mut unexplained = Vec::new();
+    let mut found = 0;
+    for f in sources() {
+        for (line, name, count, reasoned) in long_parameter_lists(&f, LIMIT) {
+            found += 1;
+            if !reasoned {
+                unexplained.push(format!("{}:{line} {name}: {count} parameters", f.display()));
+            }
+        }
+    }
+    assert!(
+        unexplained.is_empty(),
+        "functions over {LIMIT} parameters whose doc comment does not say why (a sentence on its arguments), \
+         or group them in a type:\n{}",
+        unexplained.join("\n")
+    );
+    // The scan finds them: the Python binding's `run` mirrors the command line's options.
+    assert!(found >= 1, "the parameter scan found no long list: is it reading the sources?");
+}
+
+/// The lines of code of a file outside its test module: neither blank nor a comment.
+fn lines_of_code(text: &str) -> usize {
+    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap();
+    text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with("//")).count()
+}
+
+#[test]
+fn a_file_of_more_than_500_lines_of_code_says_why_it_stays_one_file() {
+    const LIMIT: usize = 500;
+    let mut unexplained = Vec::new();
+    let mut largest = 0;
+    for f in sources() {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let loc = lines_of_code(&text);
+        largest = largest.max(loc);
+        let header: String =
+            text.lines().take_while(|l| l.starts_with("//!") || l.trim().is_empty()).collect::<Vec<_>>().join(" ");
+        if loc > LIMIT && !header.contains("One file") {
+            unexplained.push(format!("{}: {loc} lines of code", f.display()));
+        }
+    }
+    assert!(
+        unexplained.is_empty(),
+        "files over {LIMIT} lines of code whose header (`//!`) does not say why they stay one file \
+         (\"One file: ...\"), or split them along their concepts:\n{}",
+        unexplained.join("\n")
+    );
+    assert!(largest > 300, "the largest file has {largest} lines of code: is the scan reading the sources?");
+}

@@ -168,6 +168,9 @@ pub fn twin_reason(p: &Pipeline, first: &Job) -> Reason {
     Reason::SameTaskAs { stage: p.stages[first.stage].name.clone(), point: first.label.clone() }
 }
 
+/// Why a task is stale against the manifest of its stage's last run (`prev`). Its
+/// arguments are the task's identity as the planner holds it (stage, code version, input
+/// hashes whole and matched row by row, point, key, the run's overrides), compared one by one.
 #[allow(clippy::too_many_arguments)]
 pub fn stale_reason(
     prev: Option<&StageManifest>,

@@ -45,6 +45,9 @@ pub enum TaskError {
 /// Computes one task and stores its entry: [`guarded_run`], then its entry written to
 /// the cache. Returns the output or how it failed, and the wall time. Shared by the local
 /// backend and the SLURM worker.
+///
+/// Its arguments: the registry and the kind, the task's key, parameters and inputs, the
+/// cache it writes to and its time limit.
 pub fn compute_task(
     registry: &Registry,
     kind: &dyn DynKind,

@@ -203,6 +203,8 @@ fn cache_options(cache: PathBuf, jobs: Option<usize>, progress: bool, wait: bool
 
 /// A sweep of one kind: a pipeline of one stage, named after the kind, whose parameters
 /// `params_json` gives as a pipeline file does (a list sweeps a sweepable parameter).
+///
+/// Its arguments are the Python keyword arguments of `repro.sweep`.
 #[pyfunction]
 #[pyo3(signature = (kind, params_json, cache, jobs=None, progress=false, on_progress=None, wait=true))]
 #[allow(clippy::too_many_arguments)]
@@ -231,6 +233,8 @@ fn sweep<'py>(
 
 /// A run of a pipeline file: its targets (all stages if none) and what they need, with
 /// `overrides` ("stage.param=value", the value YAML) set as `repro run -S` sets them.
+///
+/// Its arguments are the Python keyword arguments, one per option of `repro run`.
 #[pyfunction]
 #[pyo3(signature = (pipeline, targets, overrides, cache, figures=None, tables=None, jobs=None, progress=false, dry_run=false, force=Vec::new(), on_progress=None, wait=true, publish=false))]
 #[allow(clippy::too_many_arguments)]

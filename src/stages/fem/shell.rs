@@ -158,6 +158,9 @@ pub fn default_lift_threshold() -> f64 {
 }
 
 /// The shell model: mesh shaped by the imperfection, law, Gauss rule, supports, apex force.
+///
+/// Its arguments are the fields of the stages' shell settings (`MapModel`, `ShellParams`)
+/// that the model needs, read by each kind from its own parameters.
 #[allow(clippy::too_many_arguments)]
 pub fn model(
     mesh: ShellMesh,

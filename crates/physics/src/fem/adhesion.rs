@@ -84,6 +84,9 @@ impl Adhesion {
     /// the full dof vector) for displacements `u` and the plate at z = `z_plate`; returns
     /// the adhesive part of the plate force (dU/d delta, counted like a pressing force:
     /// negative, a pull) and the energy U. `tangent` chooses the tangent (`Tangent`).
+    ///
+    /// Its arguments: the state it reads (mesh, u, plate) and the three accumulators of the
+    /// assembly it adds to, which the caller owns across the interface laws.
     #[allow(clippy::too_many_arguments)]
     pub fn apply(
         &self,

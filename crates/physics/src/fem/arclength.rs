@@ -78,6 +78,9 @@ fn tangent(
 /// One corrector from the predictor (u_k, delta_k) + ds t.
 /// Returns the converged state with its evaluation (tangent and contact, for the next
 /// tangent).
+///
+/// Its arguments: the shell problem's three parts (`ShellProblem` binds them above this
+/// module), the state and predictor, the step and the Newton options.
 fn correct(
     model: &Model,
     plate: &Plate,
@@ -132,6 +135,9 @@ fn correct(
 /// of `sign` (+1 or -1), until `stop` returns true for a point, `max_points` are reached or
 /// the step falls below `ds_min` (the last point is then the failed attempt's start, and
 /// the returned flag is false).
+///
+/// Its arguments: the shell problem's three parts, which `ShellProblem::continue_path`
+/// binds, the start, the direction, the options and the stopping rule.
 pub fn continue_path(
     model: &Model,
     plate: &Plate,

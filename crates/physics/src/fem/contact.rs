@@ -161,6 +161,9 @@ impl Plate {
     /// residual's derivative with respect to the plate displacement delta (added to `q`) and
     /// the state, for the plate at z = z_plate, displacements u and the anchors `stick` of the
     /// last converged state (empty: the reference radii).
+    ///
+    /// Its arguments: the state it reads (mesh, u, plate, anchors) and the three accumulators
+    /// of the assembly it adds to, which the caller owns across the interface laws.
     #[allow(clippy::too_many_arguments)]
     pub fn apply(
         &self,

@@ -52,17 +52,10 @@ pub const DEFAULT_MESH_REL_ERROR: f64 = 0.005;
 
 /// Relative error of a cycle's dissipated energy W on the default mesh (2 elements through
 /// the thickness) under each Gauss rule. With 3 x 3 points the elements are too stiff where
-/// adhesion and friction load the surface, and W comes out high: measured at h/R = 0.06
-/// (R = 15) against 4 elements of the 2 x 2 rule through the thickness (which agree with 8
-/// of either rule to 0.05 %; `fem.buckling h_over_R=0.06 mu=... gamma_over_Eh=...
-/// 'model={stability: tangent, imperfection: {apex_force: 0.05}, integration: reduced,
-/// n_thickness: 4}'`), +1.4 % at mu = 0.5 without adhesion, +1.8 % at mu = 0.25,
-/// gamma/(E h) = 1e-3, +3.0 % without friction and +0.5 % at mu = 1, gamma/(E h) = 1e-5,
-/// +3.0 % at mu = 1 and 1.5, gamma/(E h) = 4e-3, +3.9 % and +4.3 % at mu = 0.5 and 1,
-/// gamma/(E h) = 0.016: declared as 5 %. With 2 x 2 points, on the same eight cycles,
-/// within 0.11 % up to gamma/(E h) = 4e-3 but -0.7 % without friction at 1e-5, and +0.7 %
-/// and +0.9 % at 0.016: declared as 1 %. Refining along the meridian alone (the mesh study)
-/// does not show it: 480 elements change W by 0.02 % under either rule.
+/// adhesion and friction load the surface, and W comes out high; refining along the
+/// meridian alone (the mesh study) does not show it. The largest departures over eight
+/// cycles against four elements of the 2 x 2 rule, declared here as 5 % (3 x 3) and 1 %
+/// (2 x 2), are in docs/shell.md, "The element's Gauss rule".
 pub fn default_mesh_w_rel_error(integration: Integration) -> f64 {
     match integration {
         Integration::Full => 0.05,

@@ -67,9 +67,9 @@ fn maugis_dugdale_line_to(a: f64, lambda: f64, tol: f64) -> Option<LinePoint> {
 /// The line-contact pull-off under load control: the least W over the half-width A, the
 /// lesser of the minimum over A in [1e-6, 10] and the limit A -> 0 (`zero_width_limit`).
 /// Below lambda ~ 0.18 the limit is the pull-off: W falls monotonically towards it as the
-/// contact closes (no compressive zone at pull-off, ERRATA 19), and the radius is 0 (measured:
-/// the limit at lambda = 0.158, an interior minimum at A = 2.3e-5 at lambda = 0.1995, whose
-/// A grows continuously from 0). The minimum over [1e-6, 10] taken as it stands would sit,
+/// contact closes (no compressive zone at pull-off, ERRATA 19), and the radius is 0; above,
+/// an interior minimum whose A grows continuously from 0 (both sides tested:
+/// `at_small_lambda_the_line_pull_off_is_the_zero_width_limit`). The minimum over [1e-6, 10] taken as it stands would sit,
 /// at small lambda, on the range's end, 8e-13 above the limit.
 pub fn maugis_dugdale_line_pull_off(lambda: f64) -> Option<PullOff> {
     let interior =
@@ -102,7 +102,7 @@ fn rigid_integral(d: f64) -> f64 {
 
 /// kappa of the rigid-cylinder pull-off -kappa sqrt(lambda) with the Lennard-Jones law.
 pub fn lj_rigid_pull_off_coefficient() -> f64 {
-    // The most tensile approach lies at negative d (surfaces apart): measured d = -0.1009.
+    // The most tensile approach lies at negative d (surfaces apart; the test below finds it).
     let (_, neg) = maximize(|d| -rigid_integral(d), -0.6, 0.3, 19, 1e-9);
     (2.0 / ALPHA).sqrt() * neg
 }
@@ -180,6 +180,11 @@ mod tests {
             let p = maugis_dugdale_line_pull_off(lambda).unwrap();
             assert_eq!((p.load, p.radius), (limit, 0.0));
         }
+        // The transition: still the limit at lambda = 0.158; at 0.1995 an interior minimum at
+        // a half-width that has grown from 0 only to about 2e-5.
+        assert_eq!(maugis_dugdale_line_pull_off(0.158).unwrap().radius, 0.0);
+        let a = maugis_dugdale_line_pull_off(0.1995).unwrap().radius;
+        assert!(a > 1e-5 && a < 5e-5, "A = {a}");
         // The rigid Dugdale cylinder as lambda -> 0, to first order in lambda^(3/2).
         let l = 1e-6;
         assert!((zero_width_limit(l) / (-2.0 * (2.0 * l).sqrt()) - 1.0).abs() < 1e-5);

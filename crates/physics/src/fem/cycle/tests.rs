@@ -535,3 +535,31 @@ fn the_friction_work_delays_the_energy_snap_and_vanishes_without_friction() {
     let blind = snap(&rough, false).expect("a snap blind to friction");
     assert!(snap(&rough, true).is_none_or(|b| b.delta > blind.delta), "{blind:?}");
 }
+
+#[test]
+fn the_stability_margins_inverse_iterations_have_converged_near_the_fold() {
+    // `MARGIN_ITERATIONS` inverse iterations give the smallest eigenvalue of the stability
+    // tangent as 40 do at the last stable states before the limit point of the imperfect
+    // thesis shell (apex force 0.05 F_c), with and without friction: where the leg uses
+    // the margin to place its steps (`fold_predicted` in `loading.rs`), next to the fold.
+    let model = Model::new(ShellMesh::hemisphere(R, H, 60, 3, 8.0), E, 0.45, Base::Clamped)
+        .with_apex_force(0.05 * E * H.powi(3) / R);
+    let plate = Plate::new(&model.mesh, E, 1000.0);
+    for mu in [0.0, 0.5] {
+        let plate = if mu > 0.0 { plate.clone().with_friction(mu) } else { plate.clone() };
+        let problem = ShellProblem::new(&model, &plate, E);
+        let c = load_unload(&model, &plate, E, snap_probe(Snap::Instability));
+        let stable: Vec<_> = c.points.iter().filter(|p| p.leg == Leg::Loading && p.step.stable).collect();
+        assert!(stable.len() >= 3, "mu {mu}: {} stable states", stable.len());
+        for p in &stable[stable.len() - 2..] {
+            let margin = |n| problem.stability_margin(&p.step, Criterion::Tangent, AdhesiveHold::Free, n).unwrap();
+            let (ours, converged) = (margin(MARGIN_ITERATIONS), margin(40));
+            assert!(converged > 0.0, "mu {mu}, delta/R {}: margin {converged}", p.step.delta / R);
+            assert!(
+                (ours - converged).abs() <= 1e-8 * converged.abs(),
+                "mu {mu}, delta/R {}: {ours} with {MARGIN_ITERATIONS} iterations, {converged} with 40",
+                p.step.delta / R
+            );
+        }
+    }
+}

@@ -178,12 +178,15 @@ pub const NONMONOTONE_WINDOW: usize = 5;
 
 /// Iterations without a new lowest residual after which Newton returns to the lowest and
 /// continues with the monotone search (Chamberlain et al.'s watchdog, Math. Prog. Study 16,
-/// 1982): the nonmonotone acceptance can cycle across the kinks of the interface laws
-/// (measured: a 4-cycle of norms 1.2e-3, 4.0e-4, 9.0e-4, 3.8e-4 on an unloading step).
+/// 1982): the nonmonotone acceptance can cycle across the kinks of the interface laws, the
+/// residual returning to the same few values.
 pub const WATCHDOG: usize = 5;
 
 /// Newton at plate displacement `delta` from displacements `u0`, with the friction anchors
 /// `stick` of the last converged state (`ContactState::stick`; empty: the reference state).
+///
+/// Its arguments: the shell problem's three parts (model, plate, modulus), which
+/// `ShellProblem::solve_at` binds (the solvers lie below that type), the state and the options.
 pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], stick: &[f64], opt: Options) -> Step {
     let scale = e * model.mesh.thickness.powi(2);
     let mut u = u0.to_vec();
@@ -280,9 +283,10 @@ pub fn solve_from(model: &Model, plate: &Plate, e: f64, delta: f64, from: &Step,
 /// iteration limit resumed up to `max_iterations` in all: the result of `solve_from` with
 /// `opt` followed by `solve_from` with `max_iterations`, without repeating the runs that
 /// stopped for another reason (no admissible step along the Newton direction), which would
-/// fail again in the same way (measured: h/R = 0.06, mu = 1, gamma/(E h) = 2e-3, an
-/// unloading step whose two runs stop after 12 iterations had spent 350 assemblies on
-/// repeating them).
+/// fail again in the same way and only spend assemblies.
+///
+/// Its arguments: the shell problem's three parts, which `ShellProblem` binds, the
+/// state, the options and the extended limit.
 pub fn solve_from_extending(
     model: &Model,
     plate: &Plate,
@@ -347,6 +351,9 @@ pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max
 /// gradient, full dof vector, as `Adhesion::apply` writes it; empty: none), whose potential
 /// dead . u joins Pi. With the adhesive forces of a state frozen this is the structural
 /// solve of the thesis' staggered scheme (Section 3.2: adhesive forces applied as loads).
+///
+/// Its arguments: the shell problem's three parts, which `ShellProblem` binds, the
+/// state, the dead load and the limit.
 pub fn descend_loaded(
     model: &Model,
     plate: &Plate,
