@@ -1,7 +1,7 @@
 //! Drawing a figure with plotters (SVG): the axes (log axes as log10 values labelled in
 //! powers of ten), their extent, the title, the series with their error bars.
 
-use super::legend::{draw_legend, least_covering_legend, legend_corner, legend_size, Grid};
+use super::legend::{band_style, draw_legend, least_covering_legend, legend_corner, legend_size, Grid};
 use super::series::Series;
 use super::{FigureParams, LegendPosition, Style};
 use anyhow::{bail, Result};
@@ -257,6 +257,7 @@ pub(super) fn draw(p: &FigureParams, series: &[Series], legend_outside: bool) ->
             for run in runs {
                 match s.style {
                     Style::Line => chart.draw_series(LineSeries::new(run, style)).map_err(err)?,
+                    Style::Band => chart.draw_series(LineSeries::new(run, band_style(color))).map_err(err)?,
                     Style::Dashed => chart.draw_series(DashedLineSeries::new(run, 8, 5, style)).map_err(err)?,
                     Style::Dotted => chart.draw_series(DashedLineSeries::new(run, 2, 4, style)).map_err(err)?,
                     Style::Points => {

@@ -100,12 +100,15 @@ fn draw_entry(
         plotters::style::text_anchor::HPos::Left,
         plotters::style::text_anchor::VPos::Center,
     ));
-    let stroke = ShapeStyle::from(&color).stroke_width(2);
+    let stroke = match style {
+        Style::Band => band_style(color),
+        _ => ShapeStyle::from(&color).stroke_width(2),
+    };
     let segments: &[(i32, i32)] = match style {
         Style::Points => &[],
         Style::Dotted => &[(0, 3), (9, 12), (18, 21)],
         Style::Dashed => &[(0, 8), (13, 22)],
-        Style::Line | Style::LinePoints | Style::Area => &[(0, 22)],
+        Style::Line | Style::LinePoints | Style::Area | Style::Band => &[(0, 22)],
     };
     for &(a, b) in segments {
         root.draw(&PathElement::new(vec![(sx + a, sy), (sx + b, sy)], stroke)).map_err(err)?;
@@ -115,6 +118,11 @@ fn draw_entry(
     }
     root.draw(&Text::new(label, (sx + 30, sy), font)).map_err(err)?;
     Ok(())
+}
+
+/// The stroke of `Style::Band`: three times a line's width, at 40 % opacity.
+pub(super) fn band_style(color: RGBColor) -> ShapeStyle {
+    ShapeStyle::from(&color.mix(0.4)).stroke_width(6)
 }
 
 /// Draws the legend box with its top left corner at `at` (pixels of `root`): per entry a

@@ -30,6 +30,9 @@ pub enum Style {
     LinePoints,
     /// A line with the region between it and the bottom of the axes shaded.
     Area,
+    /// A wide translucent line: a leg that another curve retraces (a loading leg under its
+    /// dashed unloading), which stays visible beneath the curve drawn over it.
+    Band,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
