@@ -132,7 +132,8 @@ impl ShellParams {
 }
 
 /// The memory of a cycle of `steps` load steps on `n_meridian` x `n_thickness` elements
-/// (the path's states: about two per step, measured; three are counted), with the mesh
+/// (the path's states: three per step are counted, which the peak resident sets of
+/// docs/reliability.md, "Resources", bear out), with the mesh
 /// study's companion on twice the meridian elements alongside.
 pub(super) fn cycle_memory_bytes(n_meridian: usize, n_thickness: usize, steps: usize, mesh_study: bool) -> u64 {
     let states = steps.saturating_mul(3).saturating_add(64);

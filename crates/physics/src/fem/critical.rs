@@ -12,10 +12,9 @@
 //! rises smoothly with gamma until it reaches delta_max, which is where the snap leaves the
 //! loading: the threshold is the root of the signal s = delta_snap / delta_max - 1 of the
 //! probes that snap (`Probe::signal`). Its estimate is the secant through the two snapping
-//! probes nearest the threshold, interpolated in x^1.5 (s is convex in x: measured on four
-//! (h/R, mu) points of the map, the linear secant overshoots the root by 5-12 % from a
-//! probe at half of it, the quadratic one undershoots by as much). A probe that snaps costs
-//! several times one that does not (`ABOVE`), so the search stays above the estimate: the
+//! probes nearest the threshold, interpolated in x^1.5 (s is convex in x on the map's points:
+//! the linear secant overshoots the root, the quadratic one undershoots). A probe that snaps
+//! by the stability test was the dearer (`ABOVE`), so the search stays above the estimate: the
 //! first trial is `guess` times -s(0), divided by `DESCENT` (then by `growth`) until one
 //! snaps; then each probe goes a little above the estimate, or, where the estimate lies
 //! within (1 + rel_tol) of the lowest probe that did not snap, just inside that probe's
@@ -31,7 +30,7 @@
 //! Newton step) is then the estimate, and the search probes just above it and just below
 //! it, closing the bracket in two probes when it is right (at most `GUIDED` in a row). The
 //! snap's delta under that criterion moves in the steps of the loading, too coarse for the
-//! secant of the signal: 14 probes without margins at h/R = 0.06, mu = 0, 4 with them.
+//! secant of the signal (probe counts: docs/tuning.md, "Shell snap search").
 //!
 //! A probe whose loading fails to converge before either answer is counted as buckling if
 //! it got past a quarter of delta_max (the snap is where Newton on the flattened branch
@@ -83,12 +82,9 @@ impl Margin {
 }
 
 /// The fraction of delta_max past which a loading that fails to converge, every state
-/// before stable, counts as not snapping before delta_max. Measured (h/R = 0.02, mu = 0.5,
-/// gamma/(E h) = 0.04, default mesh 230 x 2): the loading to delta_max = 0.35 R failed at
-/// delta/R = 0.3497 (residual 1e-4), and so did gamma (1 + 1e-3) at 0.3496 and gamma 0.08 at
-/// 0.3497, while the same loading to 0.34 R or to 0.36 R runs through stable without a snap:
-/// the failure is the last step's, not a fold. Counted as buckling by the quarter rule,
-/// such probes had put gamma_c at 0.082 instead of between 0.02 and 0.04.
+/// before stable, counts as not snapping before delta_max: a failure of the last step is not
+/// a fold, and counted as buckling by the quarter rule it would move gamma_c far above the
+/// probes that ran through (docs/tuning.md, "Shell snap search").
 pub const END_FRACTION: f64 = 0.99;
 
 impl Probe {
@@ -165,11 +161,11 @@ impl<F: FnMut(f64) -> Probe> Memo<F> {
     }
 }
 
-/// A probe that snaps costs several times one that does not: its snap is located by
-/// halving failed steps (measured on the map's points, one thread: 2-11 s against 0.4-1 s,
-/// except near the threshold of the thinnest shells). The search therefore places its
-/// probes a factor (1 + rel_tol)^ABOVE above the secant's estimate, where they most likely
-/// do not snap, and keeps the probes that must snap, near the threshold, to about one.
+/// The search places its probes a factor (1 + rel_tol)^ABOVE above the secant's estimate,
+/// where they most likely do not snap, and keeps the probes that must snap, near the
+/// threshold, to about one: chosen when a snap was located by halving failed steps and cost
+/// several times a probe that ran through, which it no longer does (docs/tuning.md, "Shell
+/// snap search", has the costs).
 const ABOVE: f64 = 0.3;
 
 /// The exponent of the secant's interpolation variable x^SECANT_POWER (see the module).
@@ -304,12 +300,10 @@ pub fn bracket(mut probe: impl FnMut(f64) -> Probe, guess: f64, growth: f64, x_m
 pub const RETRY_SHIFT: f64 = 1e-3;
 
 /// `probe`, run once more at x (1 + RETRY_SHIFT) when it does not decide (`Probe::decided`);
-/// the answer found there stands for x (its `x` stays x). Measured: with friction the
-/// loading's Newton can stall on a node at the stick/slip kink for one value and not for
-/// its neighbour (h/R = 0.02, mu = 0.5, gamma/(E h) = 0.04: the stage's gamma failed at
-/// delta/R = 0.3497 with residual 6e-5, the same gamma 2e-16 lower ran through, stable, to
-/// delta_max), and a failed probe only answers by `Probe::buckles`' rule of thumb. The
-/// shift is far inside any bracketing tolerance (rel_tol 0.1).
+/// the answer found there stands for x (its `x` stays x): with friction the loading's
+/// Newton can stall on a node at the stick/slip kink for one value and not for a
+/// neighbour a rounding away, and a failed probe only answers by `Probe::buckles`' rule of
+/// thumb. The shift is far inside any bracketing tolerance (rel_tol 0.1).
 pub fn retrying(mut probe: impl FnMut(f64) -> Probe) -> impl FnMut(f64) -> Probe {
     move |x| {
         let p = probe(x);

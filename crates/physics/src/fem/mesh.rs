@@ -34,20 +34,13 @@ pub struct ShellMesh {
 
 /// Elements along the meridian per (R + h) / g0 in the default mesh (grading 3): the
 /// element at the contact rim of the snap (r ~ 0.5-0.6 R) is then about g0 long, which the
-/// Lennard-Jones law of Eq. 3.3 needs (it varies over g0 in the gap). Measured on R = 15,
-/// h = 1, gamma = 1e-3 N/mm (F_buckling R / (E h^3)): 10.63 (100 elements), 9.60 (150), 9.39
-/// (200), then 7.86 (240), 7.86 (320), 7.87 (400): the coarser meshes miss the snap at
-/// delta/R = 0.188 and overstate adhesion's delay of it; 1.5 (R + h) / g0 = 240 is the first
-/// converged one. Friction converges more slowly (mu = 1: 15.29 at 240, 15.10 at 320,
-/// 15.09 at 480).
+/// Lennard-Jones law of Eq. 3.3 needs (it varies over g0 in the gap). F_buckling and W on
+/// it against 480 elements: docs/tuning.md, "Shell mesh".
 pub const MERIDIAN_ELEMENTS_PER_G0: f64 = 1.5;
 
 /// Relative error of F_buckling on the default mesh (`meridian_elements`, 2 elements
-/// through the thickness), from the resolution study of `pipelines/bench.yaml` (largest
-/// error 0.47 % over its four points against 480 x 4 elements, 70 load steps, 8
-/// bisections), declared as 0.5 %. With friction the error is larger (mu = 1: 1.3 % at 240,
-/// 0.07 % at 320 elements against 480), which this figure, from mu <= 0.5, does not cover:
-/// `default_mesh_rel_error`.
+/// through the thickness) up to mu = 0.5, declared above the departures measured against
+/// finer meshes (docs/tuning.md, "Shell mesh"); with friction: `default_mesh_rel_error`.
 pub const DEFAULT_MESH_REL_ERROR: f64 = 0.005;
 
 /// Relative error of a cycle's dissipated energy W on the default mesh (2 elements through
@@ -63,13 +56,9 @@ pub fn default_mesh_w_rel_error(integration: Integration) -> f64 {
     }
 }
 
-/// Relative error of F_buckling on the default mesh with friction `mu`: friction converges
-/// more slowly in the mesh. Measured at h/R = 0.06 (R = 15), gamma/(E h) = 1e-3 (
-/// `fem.buckling` with `model: {n_meridian: 240}` and 480): F_bar 15.246 / 15.097 at mu = 1
-/// and 23.084 / 22.875 at mu = 1.5, so at second order 1.3 % and 1.2 % for 240 elements;
-/// and 15.29 / 15.10 / 15.09 (240 / 320 / 480) at mu = 1, gamma/(E h) = 2.2e-3. Hence
-/// `DEFAULT_MESH_REL_ERROR` (measured up to mu = 0.5) rising linearly to 1.3 % at mu = 1,
-/// and 1.3 % beyond (not measured past mu = 1.5).
+/// Relative error of F_buckling on the default mesh with friction `mu`, where the mesh
+/// converges more slowly: `DEFAULT_MESH_REL_ERROR` up to mu = 0.5, rising linearly to 1.3 %
+/// at mu = 1 and 1.3 % beyond (docs/tuning.md, "Shell mesh", has the departures measured).
 pub fn default_mesh_rel_error(mu: f64) -> f64 {
     const AT_MU_1: f64 = 0.013;
     let t = ((mu - 0.5) / 0.5).clamp(0.0, 1.0);

@@ -9,12 +9,9 @@ use crate::numerics::extrapolation;
 /// cycles on n and 2n (the `mesh_study` option of the `fem.*` kinds): twice the differences, Richardson's
 /// bound |X(n) - X(2n)| 2^p / (2^p - 1) at first order p = 1. The elements are quadratic,
 /// but the snap's force comes from a bisection on a discrete stability test, and its mesh
-/// sequence is not smooth (measured, h/R = 0.06, mu = 0, 3 elements through the thickness,
-/// grading 8, steps of 0.01 R: F_bar 9.107, 9.314, 9.352, 9.258, 9.304 on 30 to 480
-/// elements; at mu = 0.5: 11.673, 11.588, 11.960 on 30, 60, 120), so the second-order
-/// factor 4/3 would not be safe. The companion is the finer mesh, not the coarser: a
-/// coarse mesh is often outside the asymptotic range (at mu = 0.5 the 30-element value
-/// lies 0.08 from the 60-element one, whose error is 0.35), and then no estimate holds. When
+/// sequence is not monotone (docs/tuning.md, "Shell mesh"), so the second-order factor 4/3
+/// would not be safe. The companion is the finer mesh, not the coarser: a coarse mesh is
+/// often outside the asymptotic range, and then no estimate holds. When
 /// the two meshes disagree on whether the shell snaps, or either cycle is incomplete,
 /// nothing is known: the errors are the larger |F| and |W| of the two and `agrees` is
 /// false.

@@ -20,19 +20,17 @@
 //! rim of the contact disk and the interior touches the plate with p ~ 0 (p/E < 1e-4
 //! inside, 1.4e-2 at the rim, R = 15, h = 1, delta/R = 0.25). The test holds only the
 //! nodes pressed above `threshold` times the peak pressure. The threshold is a free
-//! choice: on R = 15, h = 1 (60 x 3 elements and 80 x 4) the first unstable delta/R is
-//! 0.175, 0.185, 0.190, 0.195, 0.200, 0.205 for thresholds 0.2, 0.1, 0.05, 0.02, 0.01,
-//! 0.005.
+//! choice: the first unstable delta moves with it by a fifth over thresholds from 0.2 to
+//! 0.005 (docs/tuning.md, "Shell snap search").
 //!
 //! With adhesion (Eq. 3.3) the test adds the adhesive tangent of the state. A touching point
 //! (g' <= 0) sits on the kink of the law: lifting it is resisted by 16 dgamma / g0^2 per area
-//! on the g' > 0 side, by nothing on its own side. `AdhesiveHold` chooses. Measured (R = 15,
-//! h = 0.9, 60 x 3 elements, mu = 0): holding with 16 dgamma / g0^2 suppresses the snap for
-//! every dgamma >= 1e-4 N/mm (gamma/(E h) ~ 1e-4: with g0 = 0.1 mm that stiffness is of the
-//! order of E/h already at dgamma ~ 1e-3); letting touching points lift freely (the default),
-//! F_buckling rises with dgamma (11.8, 12.7, 15.5 F_c at gamma/(E h) = 1e-4, 3e-4, 9e-4) and
-//! the snap disappears near gamma/(E h) = 1.3e-3. The thesis (staggered adhesion, ANSYS)
-//! finds gamma_c/(E h) ~ 5e-2 there: its adhesion holds the shell even less.
+//! on the g' > 0 side, by nothing on its own side. `AdhesiveHold` chooses: holding with
+//! 16 dgamma / g0^2 (with g0 = 0.1 mm of the order of E/h already at dgamma ~ 1e-3 N/mm)
+//! suppresses every snap; letting touching points lift freely (the default), F_buckling
+//! rises with dgamma until the snap disappears (docs/tuning.md, "Shell snap search", has
+//! both). The thesis (staggered adhesion, ANSYS) finds gamma_c/(E h) ~ 5e-2 there: its
+//! adhesion holds the shell even less.
 
 use super::adhesion::Tangent;
 use super::contact::Plate;

@@ -77,8 +77,8 @@ impl Mesh {
 
 /// The domain half-length for a requested relative accuracy: 2.5 contact half-widths
 /// (JKR, or Hertz at large loads), and at least the range beyond which the Lennard-Jones
-/// tail would carry less than a fraction rel_tol of max(|W|, 0.1) (measured at lambda = 3,
-/// W = 0.1: truncating at L = 5, 7 changes mu* by 5e-5, 7e-6 relative to L = 10). The tail pressure
+/// tail would carry less than a fraction rel_tol of max(|W|, 0.1) (what truncating changes:
+/// docs/tuning.md, "BEM domain"). The tail pressure
 /// is P ~ -(3 sqrt 3/2)(alpha lambda X^2/2)^-3, so its load beyond L is about
 /// lambda * 2 * 2.6 * 8 / (5 (alpha lambda)^3 L^5) (`tail_over`).
 pub fn domain_half_length(p: &Params, rel_tol: f64) -> f64 {
@@ -101,10 +101,9 @@ pub(super) fn load_scale(p: &Params) -> f64 {
 
 /// The relative error of mu* that truncating the domain at `half_length` may cause: the
 /// load the Lennard-Jones tail would carry beyond it, as a fraction of max(|W|, 0.1) (the
-/// inverse of `domain_half_length`'s rule). Measured against a domain 2.5 times longer at
-/// lambda = 0.3, W = 1, k = 0.1, V0 = 10, where the domain's share dominates: the error of
-/// mu* was 0.95-1.01 times |mu*| times this fraction plus the mesh's Richardson share, on
-/// domains of 8, 10 and 16.
+/// inverse of `domain_half_length`'s rule). Against domains 2.5 times longer, the reported
+/// estimate covers the truncation where the domain's share dominates (docs/tuning.md, "BEM
+/// domain").
 pub fn domain_rel_error(p: &Params, half_length: f64) -> f64 {
     domain_load_error(p, half_length) / load_scale(p)
 }
