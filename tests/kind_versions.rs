@@ -219,6 +219,8 @@ const NOT_SOLVERS: &[&str] = &[
     "pb.calibrate",
     "fem.mesh",
     "fit.powerlaw",
+    // A closed form, exact to rounding.
+    "theory.jkr_friction_limit",
     "figure",
     "claim",
     "claims",

@@ -197,6 +197,46 @@ fn a_figure_title_says_the_parameters_of_the_data_it_draws() {
 }
 
 #[test]
+fn a_limit_line_drawn_beside_the_data_follows_an_override_of_its_parameters() {
+    // The JKR limit of the friction is computed from the (W, k) of the table it bounds, so
+    // an override of W moves the line and its label with the data; no value is written in
+    // the figure's layers.
+    let s = Scratch::new("limit-line");
+    s.write(
+        "p.yaml",
+        r#"stages:
+  - name: pts
+    kind: bem.sweep
+    params: {lambda: 1, W: 1, k: 0.1, V0: 1, n: 64}
+  - name: limit
+    kind: theory.jkr_friction_limit
+    needs: [pts]
+    params: {from: pts, lambda_range: [0.1, 10]}
+  - name: fig
+    kind: figure
+    needs: [pts, limit]
+    params:
+      title: "max mu* vs lambda, W = {W}"
+      x_label: "lambda"
+      y_label: "mu*"
+      log_x: true
+      layers:
+        - data: {from: pts, x: lambda, y: mu_star, label: "BEM", style: points}
+        - data: {from: limit, x: lambda, y: mu_star_jkr, label: "JKR limit, W = {W}, k = {k}", style: dashed}
+"#,
+    );
+    let (code, err, _) = s.run("p.yaml", &["-S", "pts.W=2"]);
+    assert_eq!(code, 0, "{err}");
+    let svg = String::from_utf8(s.read("overrides/p/pts.W=2/figures/fig.svg")).unwrap();
+    assert!(svg.contains("JKR limit, W = 2, k = 0.1") && !svg.contains("W = 1,"), "{svg}");
+    // The line's level, from the figure's own table: sqrt(pi) / (2 W^(3/2) k) at W = 2.
+    let table = s.repro(&["show", &s.path("overrides/p/pts.W=2/tables/limit.parquet").to_string_lossy()]);
+    let shown = String::from_utf8_lossy(&table.stdout).to_string() + &String::from_utf8_lossy(&table.stderr);
+    let level = std::f64::consts::PI.sqrt() / (2.0 * 2f64.powf(1.5) * 0.1);
+    assert!(shown.contains(&format!("{level:.6}")), "{shown} (expected {level})");
+}
+
+#[test]
 fn a_column_that_does_not_exist_fails_the_dry_run_at_the_line_naming_it() {
     // A figure layer, a title's placeholder and a claim naming columns the kind does not
     // declare: each an error at its line before anything runs, with the nearest column.

@@ -7,6 +7,7 @@ pub mod claim;
 pub mod fem;
 pub mod figure;
 pub mod fit;
+pub mod jkr_limit;
 pub mod material;
 pub mod pb;
 pub mod theory;
@@ -72,6 +73,7 @@ pub fn registry() -> Registry {
     claim::register(&mut r);
     figure::register(&mut r);
     fit::register(&mut r);
+    jkr_limit::register(&mut r);
     pb::register(&mut r);
     util::register(&mut r);
     r

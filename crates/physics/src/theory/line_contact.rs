@@ -124,6 +124,13 @@ pub fn jkr_pull_off() -> f64 {
     -3.0 * (PI / 16.0).powf(1.0 / 3.0)
 }
 
+/// The JKR limit of the sliding cylinder's friction, mu* = pi^(1/2) / (2 W^(3/2) k): what
+/// max mu* over V0 tends to as lambda grows (the equation after the thesis' Fig. 4.6, about
+/// 280 at W = 0.1, k = 0.1). W is the load (its magnitude), k = E0/E_inf.
+pub fn jkr_friction_limit(w: f64, k: f64) -> f64 {
+    PI.sqrt() / (2.0 * w.abs().powf(1.5) * k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -190,6 +197,16 @@ mod tests {
         assert!((zero_width_limit(l) / (-2.0 * (2.0 * l).sqrt()) - 1.0).abs() < 1e-5);
         // Large lambda: an interior minimum with a finite contact (JKR-like).
         assert!(maugis_dugdale_line_pull_off(3.0).unwrap().radius > 0.1);
+    }
+
+    #[test]
+    fn the_jkr_friction_limit_is_the_thesis_280() {
+        // The thesis' value at W = 0.1, k = 0.1 ("about 280"): sqrt(pi) / (2 0.1^1.5 0.1).
+        assert!((jkr_friction_limit(0.1, 0.1) - 280.2495).abs() < 1e-4, "{}", jkr_friction_limit(0.1, 0.1));
+        // W^(-3/2) and 1/k: ten times the load, 10^-1.5 of the limit.
+        let ratio = jkr_friction_limit(1.0, 0.1) / jkr_friction_limit(0.1, 0.1);
+        assert!((ratio - 10f64.powf(-1.5)).abs() < 1e-12);
+        assert_eq!(jkr_friction_limit(-0.1, 0.1), jkr_friction_limit(0.1, 0.1));
     }
 
     #[test]
