@@ -189,11 +189,23 @@ pub struct Figure;
 
 impl Kind for Figure {
     const NAME: &'static str = "figure";
-    const VERSION: u32 = 18;
+    const VERSION: u32 = 19;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "An x-y figure (SVG) of columns of the needed stages, with its data as a long table";
-    const COLUMNS: &'static [&'static str] =
-        &["series", "x", "y", "x_name", "y_name", "x_unit", "y_unit", "group_by", "group", "group_value", "y_error"];
+    const COLUMNS: &'static [&'static str] = &[
+        "series",
+        "x",
+        "y",
+        "x_name",
+        "y_name",
+        "x_unit",
+        "y_unit",
+        "group_by",
+        "group",
+        "group_value",
+        "group_unit",
+        "y_error",
+    ];
     type Params = FigureParams;
 
     fn validate(p: &FigureParams) -> Vec<FieldError> {
@@ -352,7 +364,8 @@ impl Kind for Figure {
             table
         };
         // The group of each point where a layer groups its rows: the grouping column, its
-        // value as shown, and as a number (0 where not numeric) for filtering in a data frame.
+        // value as shown, as a number (0 where not numeric) for filtering in a data frame, and
+        // its unit (docs/outputs.md).
         let table = if series.iter().any(|s| s.group.is_some()) {
             let per_point = |f: &dyn Fn(&Series) -> String| -> Vec<String> {
                 series.iter().flat_map(|s| std::iter::repeat_n(f(s), s.points.len())).collect()
@@ -371,6 +384,10 @@ impl Kind for Figure {
                 )
                 .with("group", ColumnData::Str(per_point(&|s| s.group.as_ref().map_or(String::new(), |g| g.1.clone()))))
                 .with_f64("group_value", values)
+                .with(
+                    "group_unit",
+                    ColumnData::Str(per_point(&|s| s.group.as_ref().and_then(|g| unit(&g.0)).unwrap_or_default())),
+                )
         } else {
             table
         };

@@ -348,3 +348,31 @@ fn a_figure_table_carries_the_units_of_what_it_plots() {
     }
     assert!(names.iter().any(|n| n == "guide") && names.iter().any(|n| n == "F_bar"));
 }
+
+#[test]
+fn a_grouped_figure_table_carries_the_unit_of_its_group_column() {
+    // Curves of F_bar grouped by mu (unit 1) and by gamma (N/mm in docs/outputs.md): each
+    // point carries its group column's unit; an ungrouped series an empty one.
+    let t = Table::new()
+        .with_f64("delta_over_R", vec![0.1, 0.2, 0.1, 0.2])
+        .with_f64("F_bar", vec![1.0, 2.0, 1.5, 2.5])
+        .with_f64("gamma", vec![0.0, 0.0, 1e-3, 1e-3])
+        .with_f64("mu", vec![0.5, 0.5, 0.5, 0.5]);
+    let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+    let grouped = |by: &str| {
+        let mut l = layer("F_bar", None);
+        (l.x, l.group_by, l.label) = ("delta_over_R".into(), Some(by.into()), format!("{by} = {{{by}}}"));
+        Layer::Data(l)
+    };
+    let mut plain = layer("F_bar", None);
+    (plain.x, plain.group_by, plain.label) = ("delta_over_R".into(), None, "all".into());
+    let fig = test_figure(vec![grouped("gamma"), grouped("mu"), Layer::Data(plain)]);
+    let out = <Figure as Kind>::run(&fig, &inputs).unwrap();
+    let text = |name: &str| match out.table.column(name).unwrap() {
+        ColumnData::Str(v) => v.clone(),
+        _ => panic!("{name} is not text"),
+    };
+    let (by, unit) = (text("group_by"), text("group_unit"));
+    let pairs: std::collections::BTreeSet<(&str, &str)> = by.iter().zip(&unit).map(|(b, u)| (b.as_str(), u.as_str())).collect();
+    assert_eq!(pairs, std::collections::BTreeSet::from([("gamma", "N/mm"), ("mu", "1"), ("", "")]));
+}
