@@ -145,11 +145,8 @@ pub fn zone_elements(lambda: f64, mesh: Mesh) -> f64 {
 }
 
 /// Below one element per cohesive zone the crack front is not resolved, and a mesh
-/// refinement's difference does not bound a pull-off's error. Measured (`pipelines/bench.yaml`,
-/// `pulloff_n200`): at lambda = 3 on 200 elements (0.69 per zone) the pull-off
-/// load is 90 % off at V = 1e-6 and its Richardson estimate covers 1 of 4 points; every
-/// configuration with 2 or more per zone is covered (error / estimate <= 0.46). `bem.sweep`'s
-/// mu* is covered at 1.39 per zone (n = 400, lambda = 3).
+/// refinement's difference does not bound a pull-off's error (docs/tuning.md, "BEM pull-off
+/// and maxima", has the resolution study).
 pub const MIN_ZONE_ELEMENTS: f64 = 1.0;
 
 /// The default requested accuracy of mu* (relative).
