@@ -270,7 +270,7 @@ pub struct BemSweep;
 
 impl Kind for BemSweep {
     const NAME: &'static str = "bem.sweep";
-    const VERSION: u32 = 19;
+    const VERSION: u32 = 20;
     const DOC: &'static str = "Chapter 4 BEM: friction mu* (Eq. 4.16) of a cylinder sliding on an adhesive SLS half-plane, one point per task";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k", "V0", "s"];
     const COLUMNS: &'static [&'static str] = &[
@@ -514,7 +514,7 @@ pub struct BemMaxima;
 
 impl Kind for BemMaxima {
     const NAME: &'static str = "bem.maxima";
-    const VERSION: u32 = 19;
+    const VERSION: u32 = 20;
     const DOC: &'static str =
         "Chapter 4 BEM: maximum over V0 of mu* for one (lambda, W, k), by bracketing and golden-section search";
     const SWEEPABLE: &'static [&'static str] = &["lambda", "W", "k"];
