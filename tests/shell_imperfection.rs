@@ -129,7 +129,7 @@ fn the_three_laws_agree_at_small_strain_and_part_later() {
         let mut path = load_path(&model, &plate, E, 0.001 * R, 1, 8);
         path.extend(load_path(&model, &plate, E, 0.12 * R, 12, 8));
         let ends: Vec<f64> = path.iter().map(|s| s.delta / R).collect();
-        assert!(path.iter().all(|s| s.converged) && (ends[ends.len() - 1] - 0.12).abs() < 1e-12, "{law:?}: {ends:?}");
+        assert!(path.iter().all(|s| s.converged()) && (ends[ends.len() - 1] - 0.12).abs() < 1e-12, "{law:?}: {ends:?}");
         let at = |d: f64| path.iter().find(|s| (s.delta / R - d).abs() < 1e-9).expect("a state there").contact.force;
         [at(0.001), at(0.01), at(0.12)]
     };
@@ -154,7 +154,7 @@ fn the_base_carries_the_plate_force_plus_the_apex_force_and_the_work_is_stored()
     let model = shell(Law::NeoHookean, 0.05, 0.0);
     let plate = Plate::new(&model.mesh, E, 1000.0);
     let path = load_path(&model, &plate, E, 0.12 * R, 120, 4);
-    assert!(path.iter().all(|s| s.converged && s.stable));
+    assert!(path.iter().all(|s| s.converged() && s.stable));
     let energy = |s: &repro::fem::indent::Step| {
         model.strain_energy(&s.u).unwrap() + plate.energy(&model.mesh, &s.u, apex_z(&model) - s.delta)
     };

@@ -159,7 +159,7 @@ proptest! {
         let path = load_path(&model, &plate, e, 0.1 * r, 8, 6);
         prop_assert!(!path.is_empty());
         let mut last_stable = 0.0;
-        for s in path.iter().filter(|s| s.converged) {
+        for s in path.iter().filter(|s| s.converged()) {
             prop_assert!(s.u.iter().all(|v| v.is_finite()) && s.residual.is_finite());
             let f = s.contact.force;
             prop_assert!(f.is_finite() && f >= 0.0, "plate force {f}");

@@ -258,7 +258,7 @@ impl Cycles {
 pub(super) fn branch_force(rows: &[Row], leg: &str, branch: &str, delta: f64, reach: f64) -> Option<f64> {
     let on: Vec<(f64, f64)> = rows
         .iter()
-        .filter(|r| r.leg == leg && r.branch == branch && r.step.converged)
+        .filter(|r| r.leg == leg && r.branch == branch && r.step.converged())
         .map(|r| (r.step.delta, r.step.contact.force))
         .collect();
     let bracketed = on.windows(2).find_map(|w| {
@@ -392,11 +392,11 @@ impl Kind for FemIndent {
                 "held",
                 ColumnData::Bool(
                     rows.iter()
-                        .map(|r| r.leg != "unstable" && r.branch == "flattened" && r.step.converged && !r.step.stable)
+                        .map(|r| r.leg != "unstable" && r.branch == "flattened" && r.step.converged() && !r.step.stable)
                         .collect(),
                 ),
             )
-            .with("converged", ColumnData::Bool(rows.iter().map(|r| r.step.converged).collect()))
+            .with("converged", ColumnData::Bool(rows.iter().map(|r| r.step.converged()).collect()))
             .with("termination", ColumnData::Str(rows.iter().map(|r| r.step.termination.name().to_string()).collect()))
             .with("iterations", ColumnData::I64(rows.iter().map(|r| r.step.iterations as i64).collect()))
             .with_f64("residual", col(&|s| s.residual))
@@ -443,7 +443,7 @@ mod tests {
     fn step(delta: f64, force: f64, converged: bool) -> Step {
         let contact = ContactState { force, ..Default::default() };
         let termination = if converged { StepEnd::Converged } else { StepEnd::IterationLimit };
-        Step { delta, u: Vec::new(), contact, iterations: 1, residual: 0.0, converged, stable: true, termination }
+        Step { delta, u: Vec::new(), contact, iterations: 1, residual: 0.0, stable: true, termination }
     }
 
     #[test]

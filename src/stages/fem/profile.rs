@@ -94,7 +94,7 @@ impl Kind for FemProfile {
         let f_bar = sh.f_bar();
         for (k, q) in p.points.iter().enumerate() {
             let Some(state) =
-                c.points.iter().filter(|s| s.step.converged).min_by(|a, b| {
+                c.points.iter().filter(|s| s.step.converged()).min_by(|a, b| {
                     (a.step.delta / sh.R - q.delta).abs().total_cmp(&(b.step.delta / sh.R - q.delta).abs())
                 })
             else {

@@ -373,6 +373,7 @@ fn a_grouped_figure_table_carries_the_unit_of_its_group_column() {
         _ => panic!("{name} is not text"),
     };
     let (by, unit) = (text("group_by"), text("group_unit"));
-    let pairs: std::collections::BTreeSet<(&str, &str)> = by.iter().zip(&unit).map(|(b, u)| (b.as_str(), u.as_str())).collect();
+    let pairs: std::collections::BTreeSet<(&str, &str)> =
+        by.iter().zip(&unit).map(|(b, u)| (b.as_str(), u.as_str())).collect();
     assert_eq!(pairs, std::collections::BTreeSet::from([("gamma", "N/mm"), ("mu", "1"), ("", "")]));
 }

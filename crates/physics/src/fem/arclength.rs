@@ -108,7 +108,6 @@ fn correct(
                 contact: ev.contact.clone(),
                 iterations,
                 residual: ev.norm / scale,
-                converged: true,
                 stable,
                 termination: StepEnd::Converged,
             };
@@ -198,7 +197,7 @@ mod tests {
         let plate = Plate::new(&model.mesh, e, 1000.0);
         let flat = load_path(&model, &plate, e, 0.25 * r, 10, 4).pop().unwrap();
         let inv = inverted_from(&model, &plate, e, &flat, r, h);
-        assert!(inv.converged && inv.stable);
+        assert!(inv.converged() && inv.stable);
         let opt = ArcOptions {
             ds: 0.02,
             ds_min: 1e-5,
@@ -216,6 +215,6 @@ mod tests {
         let lost = pts.iter().position(|p| !p.step.stable).unwrap();
         assert!(lost.abs_diff(fold) <= 1, "stability lost at {lost}, fold at {fold}");
         assert!(pts[..lost].iter().all(|p| p.step.stable) && pts[lost..].iter().all(|p| !p.step.stable));
-        assert!(pts.iter().all(|p| p.step.converged && p.step.iterations <= 10));
+        assert!(pts.iter().all(|p| p.step.converged() && p.step.iterations <= 10));
     }
 }

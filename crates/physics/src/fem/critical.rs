@@ -325,7 +325,7 @@ pub fn retrying(mut probe: impl FnMut(f64) -> Probe) -> impl FnMut(f64) -> Probe
 pub fn probe(model: &Model, plate: &Plate, e: f64, x: f64, opt: CycleOptions) -> Probe {
     let c = load_unload(model, plate, e, CycleOptions { stop_at_buckling: true, unload: false, ..opt });
     let reached =
-        c.points.iter().filter(|p| p.step.converged).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
+        c.points.iter().filter(|p| p.step.converged()).map(|p| p.step.delta).fold(0.0, f64::max) / opt.delta_max;
     let margin = c.balance.filter(|b| b.delta == opt.delta_max).and_then(|b| Margin::of(&b, x));
     Probe { x, buckling: c.buckling.filter(|j| opt.snap.counts(j)), complete: c.complete, reached, margin }
 }

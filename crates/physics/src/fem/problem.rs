@@ -91,7 +91,6 @@ impl<'a> ShellProblem<'a> {
             contact: Default::default(),
             iterations: 0,
             residual: 0.0,
-            converged: true,
             stable: true,
             termination: indent::StepEnd::Converged,
         }

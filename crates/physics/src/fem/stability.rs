@@ -146,7 +146,7 @@ mod tests {
         let at = |d: f64| path.iter().find(|s| (s.delta / r - d).abs() < 1e-9).unwrap();
         for (d, expected) in [(0.15, true), (0.25, false)] {
             let s = at(d);
-            assert!(s.converged && s.stable, "bilateral at {d}");
+            assert!(s.converged() && s.stable, "bilateral at {d}");
             assert_eq!(unilaterally_stable(&model, &plate, s, LIFT_THRESHOLD, AdhesiveHold::Free), expected, "{d}");
             // Holding every contact node restores the bilateral verdict.
             assert!(unilaterally_stable(&model, &plate, s, 0.0, AdhesiveHold::Free));

@@ -138,7 +138,7 @@ impl ShellProblem<'_> {
     ) -> (Step, Step, Step) {
         for _ in 0..opt.bisections {
             let mut mid = self.solve_from(0.5 * (lo.delta + hi.delta), &lo, Options::default());
-            mid.stable = mid.converged && self.is_stable(&mid, opt.criterion, opt.hold);
+            mid.stable = mid.converged() && self.is_stable(&mid, opt.criterion, opt.hold);
             if !mid.stable {
                 break;
             }
@@ -168,7 +168,7 @@ impl ShellProblem<'_> {
             return cycle;
         }
         let flat: Vec<usize> = (0..cycle.points.len())
-            .filter(|&i| cycle.points[i].step.converged && cycle.points[i].step.delta > 0.0)
+            .filter(|&i| cycle.points[i].step.converged() && cycle.points[i].step.delta > 0.0)
             .collect();
         let Some(&last) = flat.last() else { return cycle };
         let Some((inv, balance)) = self.balance(&cycle.points[last].step, friction(opt.snap)) else { return cycle };
@@ -198,7 +198,7 @@ impl ShellProblem<'_> {
             let flat: Vec<usize> = (0..loading.points.len())
                 .filter(|&i| {
                     let p = &loading.points[i];
-                    p.step.converged && !p.inverted && p.step.delta > 0.0 && p.step.delta <= end
+                    p.step.converged() && !p.inverted && p.step.delta > 0.0 && p.step.delta <= end
                 })
                 .collect();
             let lower = flat.last().and_then(|&last| self.balance(&loading.points[last].step, friction(opt.snap)));

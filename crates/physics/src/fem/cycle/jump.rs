@@ -43,7 +43,7 @@ impl ShellProblem<'_> {
         let bare_plate = self.plate.frictionless();
         let bare = self.with_plate(&bare_plate);
         let mut s = bare.solve_at(delta, start, &[], opt);
-        if !s.converged && descent {
+        if !s.converged() && descent {
             s = bare.descend(delta, start, LANDING_DESCENT_ITERATIONS);
         }
         self.anchored(s)
@@ -52,7 +52,7 @@ impl ShellProblem<'_> {
     /// A frictionless landing `s` re-established with the plate's friction (anchors where
     /// it landed, no shear); `s` itself without friction or if it did not converge.
     pub fn anchored(&self, s: Step) -> Step {
-        if self.plate.friction.is_none() || !s.converged {
+        if self.plate.friction.is_none() || !s.converged() {
             return s;
         }
         let opt = Options { max_iterations: LANDING_ITERATIONS, ..Options::default() };
@@ -89,17 +89,17 @@ impl ShellProblem<'_> {
             let a = f * s.contact.radius;
             let start = dimple(model, &s.u, a, a * a / r_mid);
             let c = structure.descend_loaded(s.delta, &start, &dead, LANDING_DESCENT_ITERATIONS);
-            c.converged.then_some(c)
+            c.converged().then_some(c)
         })?;
         let rest = match bare_plate.adhesion {
             Some(_) => bare.descend(s.delta, &collapsed.u, LANDING_DESCENT_ITERATIONS),
             None => collapsed,
         };
-        if !(rest.converged && self.is_inverted(&rest)) {
+        if !(rest.converged() && self.is_inverted(&rest)) {
             return None;
         }
         let inv = self.anchored(rest);
-        (inv.converged && self.is_inverted(&inv)).then_some(inv)
+        (inv.converged() && self.is_inverted(&inv)).then_some(inv)
     }
 
     /// The adhering state at delta = 0, as the plate brought to the apex finds it: released
@@ -120,9 +120,9 @@ impl ShellProblem<'_> {
         let bare = self.with_plate(&bare_plate);
         let zero = vec![0.0; self.model.n_dofs()];
         let released = bare.descend(0.0, &zero, JUMP_IN_DESCENT_ITERATIONS);
-        let s = if released.converged { released } else { bare.press_and_withdraw(step)? };
+        let s = if released.converged() { released } else { bare.press_and_withdraw(step)? };
         let s = self.anchored(s);
-        s.converged.then_some(Step { iterations: 0, ..s })
+        s.converged().then_some(Step { iterations: 0, ..s })
     }
 
     /// The adhering state at delta = 0 by continuation (`jump_in`'s fallback; frictionless
@@ -142,7 +142,7 @@ impl ShellProblem<'_> {
         // around it grows from its rim rather than snapping on.
         let press = 4.0 * step;
         let mut s = self.with_plate(&bare_plate).solve_at(press, &zero, &[], opt);
-        if !s.converged {
+        if !s.converged() {
             return None;
         }
         // Continuation in the work of adhesion, adaptive: an increment Newton cannot follow
@@ -191,14 +191,14 @@ impl ShellProblem<'_> {
     /// one LU and a minimum with another, and the map moved with the rounding
     /// (docs/tuning.md, "Shell").
     pub fn stable_or_rest(&self, trial: Step, from: &[f64]) -> Option<Step> {
-        if !trial.converged {
+        if !trial.converged() {
             return None;
         }
         if trial.stable {
             return Some(trial);
         }
         let s = self.descend(trial.delta, from, LANDING_DESCENT_ITERATIONS);
-        s.converged.then_some(s)
+        s.converged().then_some(s)
     }
 
     /// A failed Newton solve at `delta` from `from` (`failed`), tried again with the
@@ -208,7 +208,7 @@ impl ShellProblem<'_> {
     /// finds.
     pub fn confirm_failure(&self, delta: f64, from: &Step, failed: Step) -> Step {
         let retry = self.solve_from(delta, from, Options { window: 1, ..Options::default() });
-        if retry.converged {
+        if retry.converged() {
             retry
         } else {
             failed
@@ -231,7 +231,7 @@ impl ShellProblem<'_> {
             max_cuts,
             |next, cur| {
                 let s = self.solve_from_extending(next, cur, Options::default(), LANDING_ITERATIONS);
-                s.converged.then_some(s)
+                s.converged().then_some(s)
             },
         )
     }

@@ -163,7 +163,7 @@ impl<'p, 'a> Loading<'p, 'a> {
         let [.., p, c] = self.points.as_slice() else { return false };
         // (The reference state carries no contact state: no margin there.)
         let on_branch =
-            |q: &CyclePoint| q.step.converged && q.step.stable && !q.inverted && !q.step.contact.active.is_empty();
+            |q: &CyclePoint| q.step.converged() && q.step.stable && !q.inverted && !q.step.contact.active.is_empty();
         if self.problem.plate.friction.is_none() || !on_branch(p) || !on_branch(c) || c.step.delta <= p.step.delta {
             return false;
         }
@@ -198,11 +198,11 @@ impl<'p, 'a> Loading<'p, 'a> {
         let plan = self.plan();
         let problem = self.problem;
         let mut s = problem.solve_from(plan.target, &self.cur, Options::default());
-        if !s.converged && plan.at_smallest {
+        if !s.converged() && plan.at_smallest {
             self.cuts = self.cuts.max(self.opt.max_cuts);
             s = problem.confirm_failure(plan.target, &self.cur, s);
         }
-        if !s.converged {
+        if !s.converged() {
             if !plan.at_smallest {
                 self.shorten(&plan);
                 if plan.past_fold {
@@ -216,9 +216,9 @@ impl<'p, 'a> Loading<'p, 'a> {
                 return Flow::Stop;
             }
         }
-        s.stable = s.converged && self.stable(&s);
+        s.stable = s.converged() && self.stable(&s);
         let leaves_branch =
-            self.limit_point && s.converged && !self.inverted && self.buckling.is_none() && self.leaves(&s);
+            self.limit_point && s.converged() && !self.inverted && self.buckling.is_none() && self.leaves(&s);
         if leaves_branch {
             if !plan.at_smallest {
                 // Under the tangent criterion a step that lands off the flattened branch is
@@ -277,7 +277,7 @@ impl<'p, 'a> Loading<'p, 'a> {
                 return None;
             }
             Some(inv)
-        } else if !s.converged {
+        } else if !s.converged() {
             // Past the limit point with nowhere to land: the path ends there.
             self.push(s, self.inverted);
             self.complete = false;
@@ -303,10 +303,10 @@ impl<'p, 'a> Loading<'p, 'a> {
         for _ in halved..self.opt.bisections {
             let at = 0.5 * (lo.delta + hi.delta);
             let mut mid = problem.solve_from(at, &lo, Options::default());
-            if !mid.converged && !self.limit_point {
+            if !mid.converged() && !self.limit_point {
                 break;
             }
-            mid.stable = mid.converged && self.stable(&mid);
+            mid.stable = mid.converged() && self.stable(&mid);
             if self.leaves(&mid) {
                 hi = mid;
             } else {
@@ -322,13 +322,13 @@ impl<'p, 'a> Loading<'p, 'a> {
             delta_stable: lo.delta,
             // Past a limit point there may be no state: the force there is the last one's
             // (the bracket is then the bisection's delta alone).
-            force_unstable: if hi.converged { hi.contact.force } else { lo.contact.force },
+            force_unstable: if hi.converged() { hi.contact.force } else { lo.contact.force },
             force_after: f64::NAN,
             radius_before: lo.contact.radius,
             pull_before: lo.contact.adhesive,
             delta_after: f64::NAN,
         });
-        if hi.converged {
+        if hi.converged() {
             hi
         } else {
             lo

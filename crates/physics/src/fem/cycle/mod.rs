@@ -207,7 +207,7 @@ impl Cycle {
             .windows(2)
             .filter(|w| {
                 let (a, b) = (&w[0], &w[1]);
-                a.step.converged && b.step.converged && a.inverted == b.inverted && a.step.delta != b.step.delta
+                a.step.converged() && b.step.converged() && a.inverted == b.inverted && a.step.delta != b.step.delta
             })
             .map(|w| {
                 let (a, b) = (&w[0].step.contact, &w[1].step.contact);
@@ -310,7 +310,7 @@ impl ShellProblem<'_> {
     fn cycle_start(&self, step: f64) -> Step {
         let zero = self.reference_state();
         match self.plate.adhesion {
-            Some(_) => self.jump_in(step).unwrap_or(Step { converged: false, termination: StepEnd::NotSolved, ..zero }),
+            Some(_) => self.jump_in(step).unwrap_or(Step { termination: StepEnd::NotSolved, ..zero }),
             None => zero,
         }
     }

@@ -141,7 +141,7 @@ impl ShellProblem<'_> {
             end: StaggeredEnd::StructureFailed,
             loads,
         };
-        if !first.converged {
+        if !first.converged() {
             return failed(first, 0, first_loads);
         }
         if self.plate.adhesion.is_none() {
@@ -159,10 +159,10 @@ impl ShellProblem<'_> {
             let loaded_plate = self.structure_plate(loads.clone());
             let loaded = self.with_plate(&loaded_plate);
             let mut next = loaded.solve_at(delta, &s.u, &from.contact.stick, Options::default());
-            if !next.converged {
+            if !next.converged() {
                 next = loaded.solve_from(delta, from, Options::default());
             }
-            if !next.converged {
+            if !next.converged() {
                 return failed(next, pass, loads);
             }
             change = next.u.iter().zip(&s.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / h;
@@ -228,7 +228,7 @@ impl ShellProblem<'_> {
             let mut s = next.step;
             // The procedure has no stability test of its own: a solved state counts as one
             // on the path (the tables' `stable` column), its snap the negative slope below.
-            s.stable = s.converged;
+            s.stable = s.converged();
             let inverted = self.is_inverted(&s);
             let (before, after) = (contact_force(&cur), contact_force(&s));
             let drop = after < before - SLOPE_TOLERANCE * before.abs();

@@ -59,12 +59,12 @@ impl<'p, 'a> Unloading<'p, 'a> {
     fn land_flattened(&self, delta: f64) -> Step {
         let problem = self.problem;
         let mut near: Vec<&Step> =
-            self.loading.iter().filter(|p| !p.inverted && p.step.converged).map(|p| &p.step).collect();
+            self.loading.iter().filter(|p| !p.inverted && p.step.converged()).map(|p| &p.step).collect();
         near.sort_by(|a, b| (a.delta - delta).abs().total_cmp(&(b.delta - delta).abs()));
         let zero = vec![0.0; problem.model.n_dofs()];
         let starts: Vec<&Vec<f64>> =
             near.iter().take(SNAP_BACK_STARTS).map(|s| &s.u).chain(near.is_empty().then_some(&zero)).collect();
-        let landed = |s: &Step| s.converged && !problem.is_inverted(s);
+        let landed = |s: &Step| s.converged() && !problem.is_inverted(s);
         starts
             .iter()
             .map(|start| problem.landing(delta, start))
@@ -114,7 +114,7 @@ impl<'p, 'a> Unloading<'p, 'a> {
         }
         // Snap back at the limit point to the flattened branch.
         let mut back = self.land_flattened(last.delta);
-        if back.converged && !problem.is_inverted(&back) {
+        if back.converged() && !problem.is_inverted(&back) {
             back.stable = self.stable(&back);
             cycle.snap_back = Some(Jump {
                 delta: last.delta,
@@ -150,7 +150,7 @@ impl<'p, 'a> Unloading<'p, 'a> {
             .loading
             .iter()
             .rev()
-            .filter(|p| !p.inverted && p.step.converged && p.step.delta < self.cur.delta)
+            .filter(|p| !p.inverted && p.step.converged() && p.step.delta < self.cur.delta)
             .map(|p| &p.step)
             .collect();
         let more = Options { max_iterations: UNLOADING_RETRY_ITERATIONS, ..Options::default() };
@@ -161,7 +161,7 @@ impl<'p, 'a> Unloading<'p, 'a> {
             let cur = &self.cur;
             let mut s = if frictionless {
                 let s = problem.solve_at(warm.delta, &warm.u, &cur.contact.stick, Options::default());
-                if s.converged {
+                if s.converged() {
                     s
                 } else {
                     problem.solve_from(warm.delta, cur, more)
@@ -169,12 +169,12 @@ impl<'p, 'a> Unloading<'p, 'a> {
             } else {
                 problem.solve_from_extending(warm.delta, cur, Options::default(), more.max_iterations)
             };
-            if !s.converged && !frictionless {
+            if !s.converged() && !frictionless {
                 if let Some(t) = problem.walk_to(cur, warm.delta, self.opt.max_cuts) {
                     s = t;
                 }
             }
-            if !s.converged {
+            if !s.converged() {
                 self.push(s, self.inverted);
                 cycle.complete = false;
                 break;

@@ -22,7 +22,6 @@ pub struct Step {
     pub contact: ContactState,
     pub iterations: usize,
     pub residual: f64,
-    pub converged: bool,
     /// The free tangent is positive definite (stable under prescribed delta).
     pub stable: bool,
     /// Why its solver stopped.
@@ -67,6 +66,11 @@ impl StepEnd {
 }
 
 impl Step {
+    /// Its solver met the tolerance (`termination`; an energy descent also at a stable state).
+    pub fn converged(&self) -> bool {
+        self.termination == StepEnd::Converged
+    }
+
     /// A state at `delta` that could not even be evaluated (an inverted element): not
     /// converged, infinite residual.
     fn failed(delta: f64, u: Vec<f64>) -> Step {
@@ -76,7 +80,6 @@ impl Step {
             contact: ContactState::default(),
             iterations: 0,
             residual: f64::INFINITY,
-            converged: false,
             stable: false,
             termination: StepEnd::Inverted,
         }
@@ -268,7 +271,7 @@ pub fn solve_at(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], st
     } else {
         StepEnd::IterationLimit
     };
-    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, converged, stable, termination }
+    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, stable, termination }
 }
 
 /// Newton at plate displacement `delta` from the converged state `from`, started from the
@@ -308,7 +311,7 @@ pub fn solve_from_extending(
     let mut first = Vec::with_capacity(starts.len());
     for &start in &starts {
         let s = run(start, opt);
-        if s.converged {
+        if s.converged() {
             return s;
         }
         first.push(s);
@@ -324,7 +327,7 @@ pub fn solve_from_extending(
         } else {
             s
         };
-        if s.converged {
+        if s.converged() {
             return s;
         }
         last = Some(s);
@@ -457,16 +460,7 @@ pub fn descend_loaded(
     } else {
         StepEnd::IterationLimit
     };
-    Step {
-        delta,
-        u,
-        contact: cur.contact,
-        iterations,
-        residual: cur.norm / scale,
-        converged,
-        stable: converged,
-        termination,
-    }
+    Step { delta, u, contact: cur.contact, iterations, residual: cur.norm / scale, stable: converged, termination }
 }
 
 /// Loads from delta = 0 to `delta_max` in `steps` equal steps (halved on failure, at most
@@ -483,7 +477,7 @@ pub fn load_path(model: &Model, plate: &Plate, e: f64, delta_max: f64, steps: us
     while delta < delta_max * (1.0 - 1e-12) {
         let target = (delta + dd).min(delta_max);
         let s = solve_at(model, plate, e, target, &u, &stick, Options::default());
-        if s.converged {
+        if s.converged() {
             delta = target;
             u = s.u.clone();
             stick = s.contact.stick.clone();

@@ -92,7 +92,7 @@ fn the_tangent_is_a_band_of_one_elements_width() {
     }
     let plate = crate::fem::contact::Plate::new(&model.mesh, e, 1000.0).with_friction(0.5);
     let path = crate::fem::indent::load_path(&model, &plate, e, 0.12 * r, 12, 4);
-    assert!(path.iter().all(|s| s.converged) && path.last().unwrap().contact.force > 0.0);
+    assert!(path.iter().all(|s| s.converged()) && path.last().unwrap().contact.force > 0.0);
     assert!(model.factorizations() > 0);
 }
 
