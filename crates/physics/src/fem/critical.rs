@@ -561,7 +561,7 @@ mod tests {
     fn adhesion_suppresses_the_snap_above_gamma_c_and_not_below() {
         // R = 15, h = 0.9 (h/R = 0.06, the thesis' Fig. 3.4), mu = 0, coarse mesh, delta/R up
         // to 0.3: bracket gamma_c to 20%, then check a cycle on each side of the bracket.
-        // Measured: gamma_c/(E h) in [0.0095, 0.0104] (bracketed to 10%).
+        // The code brackets gamma_c/(E h) in [0.0095, 0.0104] at 10%.
         let (e, r, h) = (1.3, 15.0, 0.9);
         let model = Model::new(ShellMesh::hemisphere(r, h, 60, 3, 8.0), e, 0.45, Base::Clamped);
         let opt = CycleOptions {

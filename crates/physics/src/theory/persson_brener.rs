@@ -257,7 +257,7 @@ mod tests {
                 })
                 .unwrap();
             let n = power_law_exponent(s);
-            // Measured: 0.4274, 0.33333, 0.28584, 0.2013 against 3/7, 1/3, 2/7, 1/5.
+            // The flattest slopes this code finds: 0.4274, 0.33333, 0.28584, 0.2013 against 3/7, 1/3, 2/7, 1/5.
             assert!(
                 (slopes[flattest] - n).abs() < 0.003,
                 "s={s}: slope {} at u={:e}, n={n}",
