@@ -370,3 +370,39 @@ fn the_task_time_column_sums_to_the_cost_of_a_stage() {
     let total: f64 = per_task.values().sum();
     assert!((task.iter().sum::<f64>() - total).abs() <= 1e-12 * total.max(1e-300));
 }
+
+#[test]
+fn anchors_aliases_and_merge_keys_are_read_and_errors_in_them_point_at_the_anchor() {
+    // PyYAML writes `&id001` / `*id001` for a value it dumps twice; people write `<<:` to
+    // share settings. Stage b repeats a's parameters (the same tasks), c merges them under
+    // its own 1/k.
+    let s = Scratch::new("anchors");
+    let yaml = |inv_k: &str| {
+        format!(
+            "stages:\n  - name: a\n    kind: theory.persson\n    params: &shared {{inv_k: {inv_k}, V0: [0.1, 1]}}\n  \
+             - name: b\n    kind: theory.persson\n    params: *shared\n  \
+             - name: c\n    kind: theory.persson\n    params:\n      <<: *shared\n      inv_k: 10\n"
+        )
+    };
+    s.write("p.yaml", &yaml("2"));
+    let (code, err, r) = s.run("p.yaml", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(r.count(Some("a"), "computed"), 2);
+    assert_eq!(r.count(Some("c"), "computed"), 2);
+    let shown = |stage: &str| {
+        String::from_utf8_lossy(&s.repro(&["show", &format!("tables/{stage}.parquet")]).stdout).to_string()
+    };
+    assert_eq!(shown("a"), shown("b"));
+    assert!(shown("c").contains("10.0") && !shown("c").contains(" 2.0 "), "{}", shown("c"));
+    // A wrong value in the anchored mapping: one error per stage that uses it, each at the
+    // anchor's line (4), where it is written.
+    s.write("p.yaml", &yaml("0.5"));
+    let (code, err, _) = s.run("p.yaml", &["--dry-run"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("p.yaml:4:") && err.contains("inv_k"), "{err}");
+    // An alias before its anchor is refused where it stands.
+    s.write("p.yaml", "stages:\n  - name: a\n    kind: theory.persson\n    params: *later\n");
+    let (code, err, _) = s.run("p.yaml", &["--dry-run"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("p.yaml:4:") && err.contains("names no anchor"), "{err}");
+}

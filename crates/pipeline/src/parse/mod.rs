@@ -23,6 +23,7 @@
 //! the range without points, or (when every stage that reads it shows the column over a
 //! declared range) computes points outside every range shown, gets a warning.
 
+mod loader;
 mod needs;
 mod sweep;
 mod yaml;
@@ -70,26 +71,9 @@ pub fn load_with(
     parse_with(&file, &text, registry, overrides)
 }
 
-fn load_error(file: &str, e: marked_yaml::LoadError) -> Diagnostic {
-    use marked_yaml::LoadError::*;
-    let (location, message) = match &e {
-        TopLevelMustBeMapping(m) => {
-            (marker_location(file, m), "the top level must be a mapping with a `stages` list".to_string())
-        }
-        TopLevelMustBeSequence(m) | UnexpectedAnchor(m) | MappingKeyMustBeScalar(m) | UnexpectedTag(m) => {
-            (marker_location(file, m), strip_marker(&e.to_string()))
-        }
-        ScanError(m, _) => (marker_location(file, m), format!("invalid YAML: {}", strip_marker(&e.to_string()))),
-        DuplicateKey(inner) => (
-            span_location(file, inner.key.span()),
-            format!(
-                "duplicate key `{}` (first given at line {})",
-                inner.key.as_str(),
-                inner.prev_key.span().start().map_or(0, |m| m.line())
-            ),
-        ),
-    };
-    Diagnostic { location, message }
+fn load_error(file: &str, e: loader::LoadError) -> Diagnostic {
+    let (m, message) = e.located();
+    Diagnostic { location: marker_location(file, &m), message }
 }
 
 /// The line (1-based) where a second YAML document starts: a `---` or `...` marker after
@@ -112,14 +96,6 @@ fn second_document(text: &str) -> Option<usize> {
     None
 }
 
-fn strip_marker(s: &str) -> String {
-    // marked_yaml prefixes messages with its own marker; we print ours.
-    match s.split_once(": ") {
-        Some((head, rest)) if head.chars().any(|c| c.is_ascii_digit()) => rest.to_string(),
-        _ => s.to_string(),
-    }
-}
-
 /// Parses pipeline text (exposed for tests).
 pub fn parse(file: &str, text: &str, registry: &Registry) -> Result<Pipeline, InvalidPipeline> {
     parse_with(file, text, registry, &[])
@@ -134,8 +110,7 @@ fn apply_overrides(file: &str, root: &mut Node, overrides: &[Override]) -> Vec<D
         message,
     };
     for o in overrides {
-        let options = marked_yaml::LoaderOptions::default().prevent_coercion(true);
-        let value = match marked_yaml::parse_yaml_with_options(0, format!("v: {}", o.value), options) {
+        let value = match loader::parse(&format!("v: {}", o.value)) {
             Ok(Node::Mapping(m)) => m.get_node("v").cloned(),
             _ => None,
         };
@@ -186,10 +161,9 @@ pub fn parse_with(
             message: "a pipeline file holds one YAML document; a second one starts here".to_string(),
         }]));
     }
-    // A quoted scalar stays text (`A_max: "5.0"` is a string, as for the JSON Schema).
-    let options = marked_yaml::LoaderOptions::default().error_on_duplicate_keys(true).prevent_coercion(true);
-    let mut root = marked_yaml::parse_yaml_with_options(0, text, options)
-        .map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
+    // Anchors and aliases resolved; a quoted scalar stays text (`A_max: "5.0"` is a string,
+    // as for the JSON Schema).
+    let mut root = loader::parse(text).map_err(|e| InvalidPipeline(vec![load_error(file, e)]))?;
     let errors = apply_overrides(file, &mut root, overrides);
     if !errors.is_empty() {
         return Err(InvalidPipeline(errors));
