@@ -65,7 +65,15 @@ const seen = await page.evaluate(() => {
   };
   const order = rows.map((tr) => chapter(tr.id));
   const outOfOrder = order.some((c, i) => i > 0 && c < order[i - 1]);
-  return { figures, claims, verdict, duplicates, withoutQuantity, outOfOrder };
+  // The stage graph: a panel per chapter, every arrow it declares drawn with its head.
+  const graphs = [...document.querySelectorAll("svg.graph")].map((g) => ({
+    declared: Number(g.dataset.edges),
+    drawn: [...g.querySelectorAll("path.edge[marker-end]")].filter((e) => {
+      const b = e.getBBox();
+      return b.width > 0 || b.height > 0;
+    }).length,
+  }));
+  return { figures, claims, verdict, duplicates, withoutQuantity, outOfOrder, graphs };
 });
 if (screenshot) await page.screenshot({ path: screenshot });
 await browser.close();
@@ -84,12 +92,16 @@ if (!/thesis claims reproduced/.test(seen.verdict)) failures.push(`verdict line:
 if (seen.duplicates.length) failures.push(`ids given twice: ${[...new Set(seen.duplicates)].slice(0, 5).join(", ")}`);
 if (seen.withoutQuantity.length) failures.push(`claims without the quantity compared: ${seen.withoutQuantity.slice(0, 5).join(", ")}`);
 if (seen.outOfOrder) failures.push("claims not in the thesis' chapter order");
+const arrows = seen.graphs.reduce((n, g) => n + g.drawn, 0);
+if (seen.graphs.length < 2) failures.push(`stage graph: ${seen.graphs.length} panel(s)`);
+if (arrows === 0 || seen.graphs.some((g) => g.drawn !== g.declared))
+  failures.push(`stage graph: arrows drawn ${JSON.stringify(seen.graphs)}`);
 const left = requests.filter((u) => u !== url);
 if (left.length) failures.push(`requests left the page: ${left.slice(0, 5).join(", ")}`);
 console.log(
   `report_check: ${Object.keys(seen.figures).length} figures rendered (pipeline: ${figures.length}), ` +
     `${seen.claims} claims (pipeline: ${claims.length}), ${left.length} request(s) beyond the page, ` +
-    `${seen.duplicates.length} repeated id(s); ${seen.verdict}`,
+    `${seen.duplicates.length} repeated id(s), ${seen.graphs.length} graph panels with ${arrows} arrows; ${seen.verdict}`,
 );
 for (const f of failures) console.log("FAIL " + f);
 process.exit(failures.length ? 1 : 0);

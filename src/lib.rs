@@ -17,4 +17,5 @@ pub use pipeline;
 pub mod description;
 pub mod point;
 pub mod reproduction_report;
+pub mod stage_graph;
 pub mod stages;

@@ -524,7 +524,10 @@ fn cost_section(run: Option<&RunReport>) -> String {
 fn stages_section(p: &Pipeline, code_versions: &BTreeMap<String, u32>) -> String {
     let mut h = String::new();
     h.push_str("<h2 id=\"graph\">Stages</h2>\n");
-    h.push_str(&stage_graph(p));
+    let title = |f: &pipeline::spec::Stage| {
+        chapter_of(f.points.first().and_then(|pt| pt.params["title"].as_str()).unwrap_or(&f.name))
+    };
+    h.push_str(&crate::stage_graph::panels(p, &["2", "3", "4", "5", "7"], title, chapter_heading));
     h.push_str("<details><summary>");
     let _ = write!(h, "{} stages of {} (kind, code version, what each reads)", p.stages.len(), esc(&p.file));
     h.push_str("</summary><table><tr><th>stage</th><th>kind</th><th>points</th><th>reads</th></tr>\n");
@@ -565,71 +568,6 @@ fn provenance_section(src: &Sources, pipeline_bytes: &[u8], commit: Option<Strin
     );
     h.push_str("</table>\n");
     h
-}
-
-/// The stage graph as SVG: a column per depth (the longest chain of stages before it), a box
-/// per stage coloured by what it is (computation, figure), a line per dependency. The claim
-/// stages, which the claims table lists, are left out.
-fn stage_graph(p: &Pipeline) -> String {
-    let shown: Vec<&pipeline::spec::Stage> =
-        p.stages.iter().filter(|s| s.kind != "claim" && s.kind != "claims").collect();
-    let mut depth: BTreeMap<&str, usize> = BTreeMap::new();
-    // Stages are in dependency order after validation (needs come first): one pass suffices,
-    // but a second guards against any other order.
-    for _ in 0..2 {
-        for s in &shown {
-            let d = s.needs.iter().filter_map(|n| depth.get(n.as_str())).map(|d| d + 1).max().unwrap_or(0);
-            depth.insert(&s.name, d);
-        }
-    }
-    let columns = depth.values().max().map_or(1, |d| d + 1);
-    let mut rows = vec![0usize; columns];
-    let mut at: BTreeMap<&str, (f64, f64)> = BTreeMap::new();
-    let (col_w, row_h, box_w) = (190.0, 16.0, 170.0);
-    for s in &shown {
-        let d = depth[s.name.as_str()];
-        at.insert(&s.name, (10.0 + d as f64 * col_w, 10.0 + rows[d] as f64 * row_h));
-        rows[d] += 1;
-    }
-    let height = 20.0 + *rows.iter().max().unwrap_or(&1) as f64 * row_h;
-    let width = 20.0 + columns as f64 * col_w;
-    let mut g = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"graph\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-size=\"9\">\n"
-    );
-    for s in &shown {
-        let (x, y) = at[s.name.as_str()];
-        for n in &s.needs {
-            if let Some(&(x0, y0)) = at.get(n.as_str()) {
-                let _ = writeln!(
-                    g,
-                    "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"#bbb\" stroke-width=\"0.6\"/>",
-                    x0 + box_w,
-                    y0 + 6.0,
-                    y + 6.0
-                );
-            }
-        }
-    }
-    for s in &shown {
-        let (x, y) = at[s.name.as_str()];
-        let fill = if s.kind == "figure" { "#e8f0fb" } else { "#f3f3f3" };
-        let _ = writeln!(
-            g,
-            "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{box_w}\" height=\"12\" fill=\"{fill}\" stroke=\"#999\" stroke-width=\"0.5\"><title>{} ({})</title></rect><text x=\"{:.1}\" y=\"{:.1}\">{}</text>",
-            esc(&s.name),
-            esc(&s.kind),
-            x + 3.0,
-            y + 9.0,
-            esc(&s.name)
-        );
-    }
-    g.push_str("</svg>\n");
-    format!(
-        "<p>{} stages ({} figures; the {} claim stages are in the claims table), by depth: each reads stages to its left.</p><div style=\"overflow-x:auto\">{g}</div>\n",
-        shown.len(),
-        shown.iter().filter(|s| s.kind == "figure").count(),
-        p.stages.len() - shown.len()
-    )
 }
 
 /// The run's timeline: one bar per computed task (start to end), a row per stage, as SVG.

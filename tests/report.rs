@@ -116,11 +116,18 @@ fn the_report_shows_every_figure_and_claim_and_makes_no_request() {
     assert!(cost.contains(" computed, 0 from the cache"), "the cost of p.yaml's first run: {}", &cost[..400]);
     assert!(html.matches("<rect ").count() >= 3 + 2, "timeline bars");
     assert!(html.contains("blake3 ") && html.contains("git commit"));
-    // The stage graph: a box per stage but the claims, a line per dependency.
-    let graph = &html[html.find("class=\"graph\"").unwrap()..];
-    let graph = &graph[..graph.find("</svg>").unwrap()];
-    assert_eq!(graph.matches("<rect ").count(), 3, "pulloff, fig2_x, extra");
-    assert_eq!(graph.matches("<line ").count(), 2);
+    // The stage graph: a panel per chapter, a box per stage but the claims, an arrow per
+    // dependency within a panel. pulloff belongs to Chapter 2, whose figure reads it first;
+    // `extra` (no thesis number) to the further panel, its need on pulloff named in its
+    // tooltip.
+    let panels: Vec<&str> = html.split("<h3 id=\"graph-").skip(1).collect();
+    assert_eq!(panels.iter().map(|p| &p[..p.find('"').unwrap()]).collect::<Vec<_>>(), ["2", "other"]);
+    let graph = |p: &str| p[p.find("class=\"graph\"").unwrap()..p.find("</svg>").unwrap()].to_string();
+    let (two, other) = (graph(panels[0]), graph(panels[1]));
+    assert_eq!((two.matches("<rect ").count(), other.matches("<rect ").count()), (2, 1));
+    assert!(two.contains("data-edges=\"1\"") && two.matches("class=\"edge\"").count() == 1, "{two}");
+    assert!(two.contains("marker-end=\"url(#arrow-2)\""), "{two}");
+    assert!(other.contains("reads pulloff (2)") && other.matches("class=\"edge\"").count() == 0, "{other}");
 }
 
 #[test]
