@@ -83,7 +83,7 @@ pub struct Pareto;
 
 impl Kind for Pareto {
     const NAME: &'static str = "bench.pareto";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str =
         "Run time against error: per solver configuration, max relative error vs a reference, wall time, Pareto front";
@@ -92,6 +92,7 @@ impl Kind for Pareto {
         "rel_error",
         "wall_time_s",
         "points",
+        "configs",
         "converged",
         "on_front",
         "on_front_resolved",
@@ -202,6 +203,8 @@ impl Kind for Pareto {
             .with_f64("rel_error", pick(&error))
             .with_f64("wall_time_s", pick(&time))
             .with("points", ColumnData::I64(order.iter().map(|&i| n_points[i]).collect()))
+            // How many configurations the table compares (a figure's title counts them).
+            .with("configs", ColumnData::I64(vec![order.len() as i64; n]))
             .with("converged", ColumnData::Bool(order.iter().map(|&i| ok[i]).collect()))
             .with_f64("on_front", pick(&front))
             .with_f64("on_front_resolved", pick(&resolved))

@@ -283,7 +283,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 35;
+    const VERSION: u32 = 36;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -291,6 +291,9 @@ impl Kind for FemIndent {
         "leg",
         "leg_id",
         "state",
+        "R_mm",
+        "h_mm",
+        "h_over_R",
         "gamma",
         "mu",
         "delta_over_R",
@@ -363,6 +366,10 @@ impl Kind for FemIndent {
             .with("leg", ColumnData::Str(rows.iter().map(|r| r.leg.to_string()).collect()))
             .with("leg_id", ColumnData::I64(rows.iter().map(|r| leg_id(r.leg)).collect()))
             .with("state", ColumnData::Str(rows.iter().map(|r| r.branch.to_string()).collect()))
+            // The shell's size, on every row: what a figure's title states.
+            .with_f64("R_mm", vec![sh.R; n])
+            .with_f64("h_mm", vec![sh.h; n])
+            .with_f64("h_over_R", vec![sh.h / sh.R; n])
             .with_f64("gamma", vec![p.gamma; n])
             .with_f64("mu", vec![p.mu; n])
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
