@@ -442,6 +442,7 @@ def point(
         wall_time_s [s]: wall time of the row's task (the kind's own measurement, else the executor's);
             repeated on each row of a task: sum one per `task_key`
         points [count]: points compared
+        configs [count]: the configurations a `bench.pareto` table compares (every row the same)
         converged [boolean]: the solver met its tolerance; a false row is recorded, not dropped
         on_front [boolean]: on the Pareto front of error against time
         on_front_resolved [boolean]: on the front at the error resolution
@@ -854,6 +855,9 @@ def point(
         leg [text]: `loading`, `unloading` or `unstable` (the unstable branch traced by arc length)
         leg_id [0, 1, 2]: the leg as a number (loading 0, unloading 1, unstable 2)
         state [text]: `flattened` or `inverted` branch
+        R_mm [mm]: the shell's inner radius R
+        h_mm [mm]: the shell's thickness h
+        h_over_R [1]: thickness over inner radius
         gamma [N/mm]: work of adhesion Δγ
         mu [1]: Coulomb friction coefficient
         delta_over_R [R]: plate displacement δ/R
@@ -1049,6 +1053,8 @@ def point(
         group [text]: the point's group value as shown in the legend (empty for an ungrouped series)
         group_value [units of the group column]: the group value as a number, for filtering (0 for text
             groups and ungrouped series)
+        group_unit [text]: the unit of the group column (docs/outputs.md; empty for ungrouped series and
+            undocumented columns)
         y_error [units of y]: the error bar's half-height (0 without one)
     """
 
@@ -1162,6 +1168,34 @@ def point(
         P_bar [F/(π w R)]: load (positive: compressive)
         r_over_aH [a_Hertz]: radius in the Hertz contact radius (Fig. 2.4)
         p_over_p0H [p0_Hertz]: pressure in the Hertz peak pressure (Fig. 2.4)
+    """
+
+@overload
+def point(
+    kind: Literal["theory.jkr_friction_limit"],
+    params: Optional[Mapping[str, Any]] = None,
+    /,
+    *,
+    raise_on_unconverged: bool = False,
+    from_: str = ...,
+    lambda_range: Any = ...,
+) -> Dict[str, Any]:
+    """The JKR limit of the friction mu* = pi^(1/2) / (2 W^(3/2) k) for each (W, k) of a needed stage,
+    across a lambda range
+
+    Parameters:
+        from_ (string; required): The stage whose distinct (W, k) pairs are bounded (must be in `needs`;
+            its table has the columns `W` and `k`).
+        lambda_range (array; required): The lambda range the line spans, [from, to], 0 < from < to.
+
+    Columns:
+        W [W (Eq. 4.6)]: dimensionless load per unit length (negative: tensile, the cylinder beneath the
+            substrate)
+        k [1]: modulus ratio E0/E∞
+        lambda [1]: Maugis(-Tabor) parameter: Maugis' λ in Chapter 2 stages, λ of Eq. 4.9 in Chapters
+            4-5
+        mu_star_jkr [1]: the JKR limit of the friction, π^(1/2) / (2 |W|^(3/2) k) (the equation after
+            Fig. 4.6), which max μ* approaches as λ grows
     """
 
 @overload
@@ -1833,6 +1867,7 @@ def sweep(
         wall_time_s [s]: wall time of the row's task (the kind's own measurement, else the executor's);
             repeated on each row of a task: sum one per `task_key`
         points [count]: points compared
+        configs [count]: the configurations a `bench.pareto` table compares (every row the same)
         converged [boolean]: the solver met its tolerance; a false row is recorded, not dropped
         on_front [boolean]: on the Pareto front of error against time
         on_front_resolved [boolean]: on the front at the error resolution
@@ -2285,6 +2320,9 @@ def sweep(
         leg [text]: `loading`, `unloading` or `unstable` (the unstable branch traced by arc length)
         leg_id [0, 1, 2]: the leg as a number (loading 0, unloading 1, unstable 2)
         state [text]: `flattened` or `inverted` branch
+        R_mm [mm]: the shell's inner radius R
+        h_mm [mm]: the shell's thickness h
+        h_over_R [1]: thickness over inner radius
         gamma [N/mm]: work of adhesion Δγ
         mu [1]: Coulomb friction coefficient
         delta_over_R [R]: plate displacement δ/R
@@ -2495,6 +2533,8 @@ def sweep(
         group [text]: the point's group value as shown in the legend (empty for an ungrouped series)
         group_value [units of the group column]: the group value as a number, for filtering (0 for text
             groups and ungrouped series)
+        group_unit [text]: the unit of the group column (docs/outputs.md; empty for ungrouped series and
+            undocumented columns)
         y_error [units of y]: the error bar's half-height (0 without one)
     """
 
@@ -2623,6 +2663,39 @@ def sweep(
         P_bar [F/(π w R)]: load (positive: compressive)
         r_over_aH [a_Hertz]: radius in the Hertz contact radius (Fig. 2.4)
         p_over_p0H [p0_Hertz]: pressure in the Hertz peak pressure (Fig. 2.4)
+    """
+
+@overload
+def sweep(
+    kind: Literal["theory.jkr_friction_limit"],
+    params: Optional[Mapping[str, Any]] = None,
+    /,
+    *,
+    cache: Optional[Path] = None,
+    jobs: Optional[int] = None,
+    progress: Optional[bool] = None,
+    backend: str = 'pandas',
+    raise_on_unconverged: bool = False,
+    wait: bool = True,
+    from_: str = ...,
+    lambda_range: Any = ...,
+) -> Any:
+    """The JKR limit of the friction mu* = pi^(1/2) / (2 W^(3/2) k) for each (W, k) of a needed stage,
+    across a lambda range
+
+    Parameters:
+        from_ (string; required): The stage whose distinct (W, k) pairs are bounded (must be in `needs`;
+            its table has the columns `W` and `k`).
+        lambda_range (array; required): The lambda range the line spans, [from, to], 0 < from < to.
+
+    Columns:
+        W [W (Eq. 4.6)]: dimensionless load per unit length (negative: tensile, the cylinder beneath the
+            substrate)
+        k [1]: modulus ratio E0/E∞
+        lambda [1]: Maugis(-Tabor) parameter: Maugis' λ in Chapter 2 stages, λ of Eq. 4.9 in Chapters
+            4-5
+        mu_star_jkr [1]: the JKR limit of the friction, π^(1/2) / (2 |W|^(3/2) k) (the equation after
+            Fig. 4.6), which max μ* approaches as λ grows
     """
 
 @overload
