@@ -49,6 +49,8 @@ impl LoadError {
 }
 
 /// A collection being read: where it starts, its anchor (0: none), what it holds so far.
+/// One per nesting level is open at a time, so the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 enum Open {
     Mapping { start: Marker, anchor: usize, map: MarkedMappingNode, key: Option<MarkedScalarNode>, merged: Vec<Node> },
     Sequence { start: Marker, anchor: usize, items: Vec<Node> },
