@@ -72,6 +72,8 @@ pub(crate) fn reference_params() -> BTreeMap<&'static str, Value> {
             "fit.powerlaw",
             json!({"from": "input", "x": "a", "y": "b", "x_min": 0.1, "x_max": 10, "group_by": "g", "expected_slope": 0.5}),
         ),
+        ("theory.jkr_friction_limit", json!({"from": "rolling", "lambda_range": [0.1, 10.0]})),
+        ("theory.adhesionless_friction_limit", json!({"from": "rolling", "W_range": [0.1, 100.0]})),
         (
             "figure",
             json!({
@@ -195,6 +197,7 @@ const SOLVER_ERROR_COLUMNS: &[(&str, &[&str])] = &[
     ("theory.persson", &["error_estimate"]),
     ("theory.persson_max", &["error_estimate"]),
     ("theory.persson_brener", &["error_estimate"]),
+    ("theory.adhesionless_friction_limit", &["error_estimate"]),
     ("bem.sweep", &["error_estimate"]),
     ("bem.profile", &["error_estimate"]),
     ("bem.pulloff", &["error_estimate"]),

@@ -1,10 +1,13 @@
-//! `theory.jkr_friction_limit`: the JKR limit of the sliding cylinder's friction, mu* =
-//! pi^(1/2) / (2 W^(3/2) k) (the equation after the thesis' Fig. 4.6), for each load and
-//! modulus ratio of a needed stage's table, as a line across a lambda range: a figure draws
-//! it beside the maxima it bounds, and an override of their W or k moves it with them.
+//! The limits the maxima of the sliding cylinder's friction tend to, computed from the load
+//! and modulus ratio of the needed stage's table, as lines across a range, so that a figure
+//! draws them beside the maxima and an override of their W or k moves them with them:
+//! `theory.jkr_friction_limit`, mu* = pi^(1/2) / (2 W^(3/2) k) as lambda grows (the
+//! equation after the thesis' Fig. 4.6), and `theory.adhesionless_friction_limit`, Persson's
+//! adhesionless maximum over V0 for k (Appendix A), which large loads approach.
 
 use anyhow::{bail, Result};
 use physics::theory::line_contact::jkr_friction_limit;
+use physics::theory::persson;
 use pipeline::kind::{FieldError, Inputs, Kind, Output, Registry};
 use pipeline::table::Table;
 use schemars::JsonSchema;
@@ -70,6 +73,69 @@ impl Kind for JkrFrictionLimit {
     }
 }
 
+#[derive(Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+pub struct AdhesionlessLimitParams {
+    /// The stage whose distinct modulus ratios are bounded (must be in `needs`; its table has
+    /// the column `k`).
+    pub from: String,
+    /// The load range the line spans, [from, to], 0 < from < to (the column `W`).
+    pub W_range: [f64; 2],
+}
+
+pub struct AdhesionlessFrictionLimit;
+
+/// Relative tolerance of Persson's quadrature for the maximum.
+const PERSSON_REL_TOL: f64 = 1e-8;
+
+impl Kind for AdhesionlessFrictionLimit {
+    const NAME: &'static str = "theory.adhesionless_friction_limit";
+    const VERSION: u32 = 1;
+    const TIME_LIMIT_S: f64 = 60.0;
+    const DOC: &'static str =
+        "Persson's adhesionless maximum of mu* over V0 (Appendix A) for each k of a needed stage, across a load range";
+    const COLUMNS: &'static [&'static str] = &["k", "W", "mu_star_max_adhesionless", "error_estimate"];
+    type Params = AdhesionlessLimitParams;
+
+    fn validate(p: &AdhesionlessLimitParams) -> Vec<FieldError> {
+        let [a, b] = p.W_range;
+        if a > 0.0 && b > a && b.is_finite() {
+            Vec::new()
+        } else {
+            vec![FieldError::new("W_range", format!("must be [from, to] with 0 < from < to, got [{a}, {b}]"))]
+        }
+    }
+
+    fn referenced_stages(p: &AdhesionlessLimitParams) -> Vec<(String, String)> {
+        vec![("from".into(), p.from.clone())]
+    }
+
+    fn run(p: &AdhesionlessLimitParams, inputs: &Inputs) -> Result<Output> {
+        let mut ks: Vec<f64> = Vec::new();
+        for k in inputs.table(&p.from)?.f64_column("k")? {
+            if !(k > 0.0 && k < 1.0) {
+                bail!("`{}` has k = {k}: the limit needs 0 < k < 1", p.from);
+            }
+            if !ks.contains(&k) {
+                ks.push(k);
+            }
+        }
+        let mut out = Table::new();
+        for k in ks {
+            let (_, max) = persson::max_mu_star(k, PERSSON_REL_TOL);
+            out.append(
+                &Table::new()
+                    .with_f64("k", vec![k; 2])
+                    .with_f64("W", p.W_range.to_vec())
+                    .with_f64("mu_star_max_adhesionless", vec![max.mu_star; 2])
+                    .with_f64("error_estimate", vec![max.error_estimate; 2]),
+            )?;
+        }
+        Ok(out.into())
+    }
+}
+
 pub fn register(r: &mut Registry) {
-    r.add::<JkrFrictionLimit>();
+    r.add::<JkrFrictionLimit>().add::<AdhesionlessFrictionLimit>();
 }

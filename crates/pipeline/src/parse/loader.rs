@@ -62,6 +62,8 @@ struct Loader {
     anchors: HashMap<usize, Node>,
     root: Option<Node>,
     error: Option<LoadError>,
+    /// Where the last event was: an empty document's empty mapping is placed there.
+    last: Option<Marker>,
 }
 
 fn marker(m: YamlMarker) -> Marker {
@@ -158,6 +160,7 @@ impl Loader {
 
 impl MarkedEventReceiver for Loader {
     fn on_event(&mut self, ev: Event, mark: YamlMarker) {
+        self.last = Some(marker(mark));
         if self.error.is_none() {
             if let Err(e) = self.event(ev, marker(mark)) {
                 self.error = Some(e);
@@ -178,7 +181,8 @@ pub(super) fn parse(text: &str) -> Result<Node, LoadError> {
     if let Some(e) = loader.error {
         return Err(e);
     }
-    Ok(loader.root.unwrap_or_else(|| Node::from(MarkedMappingNode::new_empty(Span::new_blank()))))
+    let end = loader.last.unwrap_or_else(|| Marker::new(0, 0, 1, 1));
+    Ok(loader.root.unwrap_or_else(|| Node::from(MarkedMappingNode::new_empty(Span::new_with_marks(end, end)))))
 }
 
 #[cfg(test)]
@@ -223,6 +227,9 @@ mod tests {
         assert_eq!(err("a: !tag 1\n").0, 1);
         assert_eq!(err("- 1\n").1, "the top level must be a mapping with a `stages` list");
         assert!(err("a: [1\n").1.starts_with("invalid YAML"));
+        // An empty document is an empty mapping, placed at its end (a line to point at).
+        let empty = parse("# nothing\n\n").unwrap();
+        assert!(empty.as_mapping().unwrap().is_empty() && empty.span().start().unwrap().line() >= 1);
         assert_eq!(err("a:\n  <<: 3\n"), (2, "a merge key (`<<`) takes a mapping or a list of mappings".into()));
         // Quoted scalars stay text; plain ones may be read as numbers.
         let root = parse("a: \"5.0\"\nb: 5.0\n").unwrap();

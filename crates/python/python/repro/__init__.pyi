@@ -1148,6 +1148,35 @@ def point(
 
 @overload
 def point(
+    kind: Literal["theory.adhesionless_friction_limit"],
+    params: Optional[Mapping[str, Any]] = None,
+    /,
+    *,
+    raise_on_unconverged: bool = False,
+    W_range: Any = ...,
+    from_: str = ...,
+) -> Dict[str, Any]:
+    """Persson's adhesionless maximum of mu* over V0 (Appendix A) for each k of a needed stage, across a
+    load range
+
+    Parameters:
+        W_range (array; required): The load range the line spans, [from, to], 0 < from < to (the column
+            `W`).
+        from_ (string; required): The stage whose distinct modulus ratios are bounded (must be in
+            `needs`; its table has the column `k`).
+
+    Columns:
+        k [1]: modulus ratio E0/E∞
+        W [W (Eq. 4.6)]: dimensionless load per unit length (negative: tensile, the cylinder beneath the
+            substrate)
+        mu_star_max_adhesionless [1]: Persson's adhesionless maximum of μ* over V0 for the row's k
+            (Appendix A), which the maxima approach at large loads
+        error_estimate [units of the main result]: a bound on the error of the row's main result
+            (Richardson share, quadrature or bracket; docs/performance.md)
+    """
+
+@overload
+def point(
     kind: Literal["theory.hertz_jkr_pressure"],
     params: Optional[Mapping[str, Any]] = None,
     /,
@@ -2634,6 +2663,40 @@ def sweep(
         prefactor [units of y]: fitted prefactor
         fitted_slope [1]: the free log-log slope over the regime
         fitted_slope_std_error [1]: its standard error
+    """
+
+@overload
+def sweep(
+    kind: Literal["theory.adhesionless_friction_limit"],
+    params: Optional[Mapping[str, Any]] = None,
+    /,
+    *,
+    cache: Optional[Path] = None,
+    jobs: Optional[int] = None,
+    progress: Optional[bool] = None,
+    backend: str = 'pandas',
+    raise_on_unconverged: bool = False,
+    wait: bool = True,
+    W_range: Any = ...,
+    from_: str = ...,
+) -> Any:
+    """Persson's adhesionless maximum of mu* over V0 (Appendix A) for each k of a needed stage, across a
+    load range
+
+    Parameters:
+        W_range (array; required): The load range the line spans, [from, to], 0 < from < to (the column
+            `W`).
+        from_ (string; required): The stage whose distinct modulus ratios are bounded (must be in
+            `needs`; its table has the column `k`).
+
+    Columns:
+        k [1]: modulus ratio E0/E∞
+        W [W (Eq. 4.6)]: dimensionless load per unit length (negative: tensile, the cylinder beneath the
+            substrate)
+        mu_star_max_adhesionless [1]: Persson's adhesionless maximum of μ* over V0 for the row's k
+            (Appendix A), which the maxima approach at large loads
+        error_estimate [units of the main result]: a bound on the error of the row's main result
+            (Richardson share, quadrature or bracket; docs/performance.md)
     """
 
 @overload
