@@ -285,10 +285,15 @@ fn braces_of(line: &str) -> (usize, usize) {
     (open, close)
 }
 
+/// A source file's text before its test module.
+fn outside_tests(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.split("#[cfg(test)]\nmod tests").next().unwrap().to_string()
+}
+
 /// The functions of a source file outside its test module: (line, name, length in lines).
 fn function_lengths(path: &Path) -> Vec<(usize, String, usize)> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap();
+    let text = outside_tests(path);
     let lines: Vec<&str> = text.lines().collect();
     let mut out = Vec::new();
     for (i, line) in lines.iter().enumerate() {
@@ -411,8 +416,7 @@ fn parameter_count(list: &str) -> usize {
 /// The functions of a file outside its test module with more than `limit` parameters:
 /// (line, name, count, whether the doc comment above says why, naming its arguments).
 fn long_parameter_lists(path: &Path, limit: usize) -> Vec<(usize, String, usize, bool)> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap();
+    let text = outside_tests(path);
     let lines: Vec<&str> = text.lines().collect();
     let mut out = Vec::new();
     for (i, line) in lines.iter().enumerate() {

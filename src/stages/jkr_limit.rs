@@ -25,6 +25,15 @@ pub struct JkrLimitParams {
 
 pub struct JkrFrictionLimit;
 
+/// The error of a range parameter `name` that is not [from, to] with 0 < from < to.
+fn range_errors(name: &str, [a, b]: [f64; 2]) -> Vec<FieldError> {
+    if a > 0.0 && b > a && b.is_finite() {
+        Vec::new()
+    } else {
+        vec![FieldError::new(name, format!("must be [from, to] with 0 < from < to, got [{a}, {b}]"))]
+    }
+}
+
 impl Kind for JkrFrictionLimit {
     const NAME: &'static str = "theory.jkr_friction_limit";
     const VERSION: u32 = 1;
@@ -35,12 +44,7 @@ impl Kind for JkrFrictionLimit {
     type Params = JkrLimitParams;
 
     fn validate(p: &JkrLimitParams) -> Vec<FieldError> {
-        let [a, b] = p.lambda_range;
-        if a > 0.0 && b > a && b.is_finite() {
-            Vec::new()
-        } else {
-            vec![FieldError::new("lambda_range", format!("must be [from, to] with 0 < from < to, got [{a}, {b}]"))]
-        }
+        range_errors("lambda_range", p.lambda_range)
     }
 
     fn referenced_stages(p: &JkrLimitParams) -> Vec<(String, String)> {
@@ -99,12 +103,7 @@ impl Kind for AdhesionlessFrictionLimit {
     type Params = AdhesionlessLimitParams;
 
     fn validate(p: &AdhesionlessLimitParams) -> Vec<FieldError> {
-        let [a, b] = p.W_range;
-        if a > 0.0 && b > a && b.is_finite() {
-            Vec::new()
-        } else {
-            vec![FieldError::new("W_range", format!("must be [from, to] with 0 < from < to, got [{a}, {b}]"))]
-        }
+        range_errors("W_range", p.W_range)
     }
 
     fn referenced_stages(p: &AdhesionlessLimitParams) -> Vec<(String, String)> {
