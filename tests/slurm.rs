@@ -164,12 +164,15 @@ fn a_restarted_coordinator_waits_for_queued_work_instead_of_resubmitting_it() {
     let reference = Scratch::new("slurm-restart-ref");
     reference.run_pipeline(yaml);
     let mut first = s.spawn_run("p.yaml", &["--executor", "slurm", "--max-jobs", "2"]);
+    // Killed once the first submission is logged: the log is created, then its line
+    // written, so a kill between the two would hide a submission from the count below.
     let log = s.path("cache/slurm/submissions.log");
+    let logged = || std::fs::read_to_string(&log).is_ok_and(|t| t.ends_with('\n'));
     let t0 = Instant::now();
-    while !log.exists() && t0.elapsed() < Duration::from_secs(30) {
+    while !logged() && t0.elapsed() < Duration::from_secs(30) {
         std::thread::sleep(Duration::from_millis(20));
     }
-    assert!(log.exists(), "the first coordinator submitted");
+    assert!(logged(), "the first coordinator submitted");
     first.kill().unwrap(); // SIGKILL
     first.wait().unwrap();
     let (code, err, r) = s.run("p.yaml", SLURM);
