@@ -163,9 +163,9 @@ impl<F: FnMut(f64) -> Probe> Memo<F> {
 
 /// The search places its probes a factor (1 + rel_tol)^ABOVE above the secant's estimate,
 /// where they most likely do not snap, and keeps the probes that must snap, near the
-/// threshold, to about one: chosen when a snap was located by halving failed steps and cost
-/// several times a probe that ran through, which it no longer does (docs/tuning.md, "Shell
-/// snap search", has the costs).
+/// threshold, to about one: for snaps located by halving failed steps, which cost several
+/// times a probe that runs through; the published criteria's probes cost about the same
+/// either side (docs/tuning.md, "Shell snap search", has the costs).
 const ABOVE: f64 = 0.3;
 
 /// The exponent of the secant's interpolation variable x^SECANT_POWER (see the module).
