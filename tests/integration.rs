@@ -11,6 +11,7 @@ mod bem_starts;
 mod claims;
 mod error_coverage;
 mod extremes;
+mod figure_texts;
 mod fuzz;
 mod kind_versions;
 mod matched_needs;

@@ -115,7 +115,10 @@ fn reference_inputs() -> BTreeMap<String, Table> {
         .with_f64("eq3_7_over_Eh", vec![0.03, 0.04, 0.0, 0.0])
         .with("reliable", repro::pipeline::table::ColumnData::Bool(vec![true, true, false, true]))
         .with("found", repro::pipeline::table::ColumnData::Bool(vec![true, true, true, true]))
-        .with_f64("error_estimate", vec![0.001, 0.002, 0.0005, 0.001]);
+        .with_f64("error_estimate", vec![0.001, 0.002, 0.0005, 0.001])
+        .with_f64("delta_max_over_R", vec![0.35; 4])
+        .with_f64("gamma_max_over_Eh", vec![0.1; 4])
+        .with("criterion", repro::pipeline::table::ColumnData::Str(vec!["energy".to_string(); 4]));
     // A claim's verdict for claims: recorded as reproduced, now differing.
     let text = |v: &str| repro::pipeline::table::ColumnData::Str(vec![v.to_string()]);
     let claim_row =

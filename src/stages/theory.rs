@@ -1,7 +1,7 @@
 //! Stage kinds for the closed-form theories: classical sphere contact (Hertz, JKR, DMT,
 //! Maugis–Dugdale), Persson's adhesionless friction, and Persson–Brener.
 
-use super::material::with_material_fields;
+use super::material::{with_material_fields, DEFAULT_TAU_RATIO};
 use super::values::{bound, check};
 use anyhow::{bail, Result};
 use physics::theory::{classical, line_contact, persson, persson_brener};
@@ -368,12 +368,12 @@ pub struct PerssonBrener;
 
 impl Kind for PerssonBrener {
     const NAME: &'static str = "theory.persson_brener";
-    const VERSION: u32 = 3;
+    const VERSION: u32 = 4;
     const TIME_LIMIT_S: f64 = 60.0;
     const DOC: &'static str = "Persson-Brener G_trail/dgamma (Eq. 5.12, or Eq. 5.27 for a spectrum) and f_T/dgamma = G - 1/G (Eq. 5.13) vs v/v0";
     const SWEEPABLE: &'static [&'static str] = &["k", "V_PB", "s"];
     const COLUMNS: &'static [&'static str] =
-        &["k", "V_PB", "G_trail_over_dgamma", "F_T_PB", "error_estimate", "s", "n_eq_5_28", "material"];
+        &["k", "V_PB", "G_trail_over_dgamma", "F_T_PB", "error_estimate", "s", "tau_ratio", "n_eq_5_28", "material"];
     type Params = PbParams;
 
     fn validate(p: &PbParams) -> Vec<FieldError> {
@@ -397,6 +397,7 @@ impl Kind for PerssonBrener {
             _ if m.is_sls() => t,
             Some(s) => t
                 .with_f64("s", vec![s])
+                .with_f64("tau_ratio", vec![m.tau_ratio.unwrap_or(DEFAULT_TAU_RATIO)])
                 .with_f64("n_eq_5_28", vec![persson_brener::power_law_exponent(s)])
                 .with("material", ColumnData::Str(vec![m.describe()])),
             None => t.with("material", ColumnData::Str(vec![m.describe()])),

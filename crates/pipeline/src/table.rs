@@ -127,6 +127,15 @@ impl Table {
         (0..col.len()).map(|i| col.f64_at(i).with_context(|| format!("column `{name}` is not numeric"))).collect()
     }
 
+    /// A text column's values, or an error naming the column (and the columns that exist).
+    pub fn str_column(&self, name: &str) -> Result<Vec<String>> {
+        match self.column(name) {
+            Some(ColumnData::Str(v)) => Ok(v.clone()),
+            Some(_) => bail!("column `{name}` is not text"),
+            None => bail!("no column `{name}` (columns: {})", self.column_names().join(", ")),
+        }
+    }
+
     pub fn column_names(&self) -> Vec<String> {
         self.columns.iter().map(|(n, _)| n.clone()).collect()
     }

@@ -70,7 +70,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 33;
+    const VERSION: u32 = 34;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
@@ -80,6 +80,8 @@ impl Kind for FemBuckling {
         "mu",
         "apex_force",
         "dimple",
+        "delta_max_over_R",
+        "criterion",
         "buckled",
         "F_buckling_bar",
         "F_contact_buckling_bar",
@@ -168,12 +170,13 @@ impl Kind for FemBuckling {
             ),
             None => (0.0, 0.0, "none"),
         };
-        Ok(Table::new()
+        let point = Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
             .with_f64("mu", vec![p.mu])
             .with_f64("apex_force", vec![m.imperfection.apex_force])
-            .with_f64("dimple", vec![m.imperfection.dimple])
+            .with_f64("dimple", vec![m.imperfection.dimple]);
+        Ok(m.stated(point, 1)
             .with("buckled", ColumnData::Bool(vec![b.is_some()]))
             // The net plate force (contact minus adhesion) at the snap, and its two parts.
             .with_f64("F_buckling_bar", vec![finite(b.map_or(0.0, |j| j.force_before * fb))])
@@ -252,13 +255,15 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 22;
+    const VERSION: u32 = 23;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];
     const COLUMNS: &'static [&'static str] = &[
         "mu",
         "gamma_over_Eh",
+        "delta_max_over_R",
+        "criterion",
         "h_limit_over_R",
         "h_lo_over_R",
         "h_hi_over_R",
@@ -314,9 +319,8 @@ impl Kind for FemBucklingLimit {
                 }
             }
         }
-        Ok(Table::new()
-            .with_f64("mu", vec![p.mu])
-            .with_f64("gamma_over_Eh", vec![p.gamma_over_Eh])
+        let point = Table::new().with_f64("mu", vec![p.mu]).with_f64("gamma_over_Eh", vec![p.gamma_over_Eh]);
+        Ok(m.stated(point, 1)
             .with_f64("h_limit_over_R", vec![if found { 0.5 * (lo + hi) } else { 0.0 }])
             .with_f64("h_lo_over_R", vec![lo])
             .with_f64("h_hi_over_R", vec![hi])

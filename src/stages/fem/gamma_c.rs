@@ -85,7 +85,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 27;
+    const VERSION: u32 = 28;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu", "g0", "apex_force", "dimple"];
@@ -95,6 +95,9 @@ impl Kind for FemGammaC {
         "g0",
         "apex_force",
         "dimple",
+        "delta_max_over_R",
+        "criterion",
+        "gamma_max_over_Eh",
         "n_meridian",
         "gamma_c_over_Eh",
         "gamma_lo_over_Eh",
@@ -145,12 +148,14 @@ impl Kind for FemGammaC {
         let last = b.last_buckled().and_then(|q| q.buckling);
         let r = last.map_or(0.0, |j| j.radius_before / m.R);
         let buckles_at_zero = b.probes.first().is_some_and(|q| q.buckles());
-        Ok(Table::new()
+        let point = Table::new()
             .with_f64("h_over_R", vec![p.h_over_R])
             .with_f64("mu", vec![p.mu])
             .with_f64("g0", vec![m.g0])
             .with_f64("apex_force", vec![m.imperfection.apex_force])
-            .with_f64("dimple", vec![m.imperfection.dimple])
+            .with_f64("dimple", vec![m.imperfection.dimple]);
+        Ok(m.stated(point, 1)
+            .with_f64("gamma_max_over_Eh", vec![p.gamma_max])
             .with("n_meridian", ColumnData::I64(vec![m.meridian_elements(p.h_over_R) as i64]))
             .with_f64("gamma_c_over_Eh", vec![finite(mid)])
             .with_f64("gamma_lo_over_Eh", vec![finite(b.lo / scale)])
@@ -191,7 +196,7 @@ pub struct FemGammaCMap;
 
 impl Kind for FemGammaCMap {
     const NAME: &'static str = "fem.gamma_c_map";
-    const VERSION: u32 = 4;
+    const VERSION: u32 = 5;
     const DOC: &'static str =
         "Chapter 3: the buckling map gamma_c/(E h) vs h/R per mu (Fig. 3.9), from fem.gamma_c points";
     const COLUMNS: &'static [&'static str] = &[
@@ -205,6 +210,9 @@ impl Kind for FemGammaCMap {
         "eq3_7_over_Eh",
         "found",
         "reliable",
+        "delta_max_over_R",
+        "criterion",
+        "gamma_max_over_Eh",
     ];
     type Params = MapParams;
 
@@ -230,25 +238,47 @@ impl Kind for FemGammaCMap {
             col("found")?,
             col("error_estimate")?,
         );
-        // The last entry is the error of h/R: none on the gamma_c points (h/R is given), the
-        // bisection's half-bracket on a limit row.
-        let mut rows: Vec<[f64; 10]> =
-            (0..h.len()).map(|i| [mu[i], h[i], g[i], lo[i], hi[i], eq[i], ok[i], found[i], err[i], 0.0]).collect();
+        let (delta_max, gamma_max, criterion) =
+            (col("delta_max_over_R")?, col("gamma_max_over_Eh")?, t.str_column("criterion")?);
+        let mut rows: Vec<MapRow> = (0..h.len())
+            .map(|i| MapRow {
+                numbers: [
+                    mu[i],
+                    h[i],
+                    g[i],
+                    lo[i],
+                    hi[i],
+                    eq[i],
+                    ok[i],
+                    found[i],
+                    err[i],
+                    0.0,
+                    delta_max[i],
+                    gamma_max[i],
+                ],
+                criterion: criterion[i].clone(),
+            })
+            .collect();
         if let Some(l) = &p.limit {
             let lt = inputs.table(l)?;
             let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
             let (llo, lhi) = (lt.f64_column("h_lo_over_R")?, lt.f64_column("h_hi_over_R")?);
+            let (ldelta, lcriterion) = (lt.f64_column("delta_max_over_R")?, lt.str_column("criterion")?);
             for i in 0..lmu.len() {
                 if found[i] > 0.5 {
-                    rows.push([lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.5 * (lhi[i] - llo[i])]);
+                    let half = 0.5 * (lhi[i] - llo[i]);
+                    rows.push(MapRow {
+                        numbers: [lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, half, ldelta[i], 0.0],
+                        criterion: lcriterion[i].clone(),
+                    });
                 }
             }
         }
         if rows.is_empty() {
             bail!("stage `{}` has no points", p.gamma_c);
         }
-        rows.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-        let c = |k: usize| rows.iter().map(|r| finite(r[k])).collect::<Vec<f64>>();
+        rows.sort_by(|a, b| a.numbers[0].total_cmp(&b.numbers[0]).then(a.numbers[1].total_cmp(&b.numbers[1])));
+        let c = |k: usize| rows.iter().map(|r| finite(r.numbers[k])).collect::<Vec<f64>>();
         Ok(Table::new()
             .with_f64("mu", c(0))
             .with_f64("h_over_R", c(1))
@@ -258,10 +288,22 @@ impl Kind for FemGammaCMap {
             .with_f64("error_estimate", c(8))
             .with_f64("h_error_over_R", c(9))
             .with_f64("eq3_7_over_Eh", c(5))
-            .with("found", ColumnData::Bool(rows.iter().map(|r| r[7] > 0.5).collect()))
-            .with("reliable", ColumnData::Bool(rows.iter().map(|r| r[6] > 0.5).collect()))
+            .with("found", ColumnData::Bool(rows.iter().map(|r| r.numbers[7] > 0.5).collect()))
+            .with("reliable", ColumnData::Bool(rows.iter().map(|r| r.numbers[6] > 0.5).collect()))
+            .with_f64("delta_max_over_R", c(10))
+            .with("criterion", ColumnData::Str(rows.iter().map(|r| r.criterion.clone()).collect()))
+            .with_f64("gamma_max_over_Eh", c(11))
             .into())
     }
+}
+
+/// One row of the map: (mu, h/R, gamma_c, its bracket's ends, Eq. 3.7, reliable, found,
+/// gamma_c's error, h/R's error, delta_max/R, gamma_max) and the snap criterion. The error of
+/// h/R is none on the gamma_c points (h/R is given), the bisection's half-bracket on a limit
+/// row; gamma_max is 0 on a limit row (no gamma was bracketed there).
+struct MapRow {
+    numbers: [f64; 12],
+    criterion: String,
 }
 
 pub fn register(r: &mut Registry) {

@@ -283,7 +283,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 36;
+    const VERSION: u32 = 37;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];
@@ -296,6 +296,9 @@ impl Kind for FemIndent {
         "h_over_R",
         "gamma",
         "mu",
+        "apex_force",
+        "dimple",
+        "criterion",
         "delta_over_R",
         "F_bar",
         "F_error_bar",
@@ -372,6 +375,9 @@ impl Kind for FemIndent {
             .with_f64("h_over_R", vec![sh.h / sh.R; n])
             .with_f64("gamma", vec![p.gamma; n])
             .with_f64("mu", vec![p.mu; n])
+            .with_f64("apex_force", vec![sh.imperfection.apex_force; n])
+            .with_f64("dimple", vec![sh.imperfection.dimple; n])
+            .with("criterion", ColumnData::Str(vec![p.snap.words().to_string(); n]))
             .with_f64("delta_over_R", col(&|s| s.delta / sh.R))
             .with_f64("F_bar", col(&|s| s.contact.force * f_bar))
             // The mesh's share of the force's error (`Cycles::force_error`).

@@ -13,6 +13,7 @@ use physics::fem::mesh::ShellMesh;
 use physics::fem::stability::{AdhesiveHold, LIFT_THRESHOLD};
 use physics::fem::system::{Base, Model};
 use pipeline::kind::FieldError;
+use pipeline::table::{ColumnData, Table};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -78,6 +79,19 @@ pub enum FirstPassLoads {
 impl SnapCriterion {
     pub(super) fn is_default(&self) -> bool {
         *self == SnapCriterion::Instability
+    }
+
+    /// The criterion in a figure's words (the `criterion` column): "local", "landing",
+    /// "energy" (with the friction work, the published one), "energy (no friction work)",
+    /// "staggered (the thesis' procedure)".
+    pub(super) fn words(&self) -> &'static str {
+        match self {
+            SnapCriterion::Instability => "local",
+            SnapCriterion::Landing => "landing",
+            SnapCriterion::Energy => "energy (no friction work)",
+            SnapCriterion::EnergyFriction => "energy",
+            SnapCriterion::Thesis(_) => "staggered (the thesis' procedure)",
+        }
     }
 }
 
@@ -216,6 +230,13 @@ impl MapModel {
                 ));
             }
         }
+    }
+
+    /// `t` with the model's parameters a figure states, on each of its `n` rows: where the
+    /// loading ends (`delta_max_over_R`) and what counts as a snap (`criterion`).
+    pub(super) fn stated(&self, t: Table, n: usize) -> Table {
+        t.with_f64("delta_max_over_R", vec![self.delta_max; n])
+            .with("criterion", ColumnData::Str(vec![self.snap.words().to_string(); n]))
     }
 
     /// The model of one point of a sweep over the interface's range and the imperfection:

@@ -1,12 +1,13 @@
 //! The data of a figure's layers: the series drawn from the needed stages' columns (with
 //! their error bars and groups), the power-law guide lines, and the fitted lines.
 
+use super::template::listed;
 use super::{DataLayer, FitLayer, GuideLayer, Style};
 use anyhow::Context;
 use anyhow::Result;
 use pipeline::kind::Inputs;
 use pipeline::table::{format_number, ColumnData, Table};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 pub(super) struct Series {
     pub(super) label: String,
@@ -25,9 +26,9 @@ pub(super) struct Series {
     pub(super) group: Option<(String, String, Option<f64>)>,
 }
 
-/// One group's curve while a layer's rows are read: its first row, its points, where its
-/// line breaks, whether rows were left out since its last point, and its points' errors.
-pub(super) type Curve = (usize, Vec<(f64, f64)>, Vec<usize>, bool, Vec<f64>);
+/// One group's curve while a layer's rows are read: its rows, its points, where its line
+/// breaks, whether rows were left out since its last point, and its points' errors.
+pub(super) type Curve = (Vec<usize>, Vec<(f64, f64)>, Vec<usize>, bool, Vec<f64>);
 
 /// Which rows of the layer's table `t` its filter keeps.
 pub(super) fn kept_rows(layer: &DataLayer, t: &Table) -> Result<Vec<bool>> {
@@ -67,9 +68,10 @@ pub(super) fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Seri
         }
         if !groups.contains_key(&gkey) {
             order.push(gkey.clone());
-            groups.insert(gkey.clone(), (row, Vec::new(), Vec::new(), false, Vec::new()));
+            groups.insert(gkey.clone(), (Vec::new(), Vec::new(), Vec::new(), false, Vec::new()));
         }
         let g = groups.get_mut(&gkey).unwrap();
+        g.0.push(row);
         if std::mem::take(&mut g.3) {
             g.2.push(g.1.len());
         }
@@ -91,12 +93,17 @@ pub(super) fn data_series(layer: &DataLayer, inputs: &Inputs) -> Result<Vec<Seri
         .into_iter()
         .map(|g| {
             let i = palette_order.iter().position(|k| *k == g).unwrap_or(0);
-            let (first_row, points, breaks, _, errors) = groups.remove(&g).unwrap();
+            let (rows, points, breaks, _, errors) = groups.remove(&g).unwrap();
+            let first_row = rows[0];
+            // A `{column}` is the value the column takes on the curve's rows, or all of them
+            // where it takes several (a label never claims one value for points drawn at
+            // several).
             let mut label = layer.label.clone();
             for (name, col) in &t.columns {
                 let pat = format!("{{{name}}}");
                 if label.contains(&pat) {
-                    label = label.replace(&pat, &col.display_at(first_row));
+                    let values: BTreeSet<String> = rows.iter().map(|&r| col.display_at(r)).collect();
+                    label = label.replace(&pat, &listed(&values));
                 }
             }
             let group = layer.group_by.as_ref().zip(group).map(|(name, col)| {

@@ -47,7 +47,7 @@ pub(super) fn text_reads(p: &FigureParams) -> Vec<ColumnRead> {
 
 /// Values in numeric order where they are numbers, as a sentence lists them: "1", "0.1 and
 /// 1", "0.1, 1 and 10".
-fn listed(values: &BTreeSet<String>) -> String {
+pub(super) fn listed(values: &BTreeSet<String>) -> String {
     let mut v: Vec<&String> = values.iter().collect();
     v.sort_by(|a, b| match (a.parse::<f64>(), b.parse::<f64>()) {
         (Ok(x), Ok(y)) => x.total_cmp(&y),

@@ -377,3 +377,19 @@ fn a_grouped_figure_table_carries_the_unit_of_its_group_column() {
         by.iter().zip(&unit).map(|(b, u)| (b.as_str(), u.as_str())).collect();
     assert_eq!(pairs, std::collections::BTreeSet::from([("gamma", "N/mm"), ("mu", "1"), ("", "")]));
 }
+
+#[test]
+fn a_label_lists_every_value_its_column_takes_on_the_curve() {
+    // Group g = 0 is drawn at V0 = 2.2 and 2.7, group g = 1 at 3 only: the first label
+    // names both speeds, not the first row's; the second names its one.
+    let t = Table::new()
+        .with_f64("x", vec![1.0, 2.0, 1.0])
+        .with_f64("a", vec![1.0, 2.0, 3.0])
+        .with_f64("V0", vec![2.7, 2.2, 3.0])
+        .with_f64("g", vec![0.0, 0.0, 1.0]);
+    let inputs = Inputs { tables: BTreeMap::from([("t".to_string(), &t)]) };
+    let mut l = layer("a", None);
+    l.label = "g = {g}, V0 = {V0}".into();
+    let labels: Vec<String> = data_series(&l, &inputs).unwrap().into_iter().map(|s| s.label).collect();
+    assert_eq!(labels, vec!["g = 0, V0 = 2.2 and 2.7", "g = 1, V0 = 3"]);
+}
