@@ -593,6 +593,11 @@ def point(
         mu [1]: Coulomb friction coefficient
         apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
         dimple [h]: imperfection: the depth of the apex dimple
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         buckled [boolean]: the shell snapped through on loading
         F_buckling_bar [F_c]: net plate force at the snap (the last stable state)
         F_contact_buckling_bar [F_c]: contact force at the snap
@@ -660,6 +665,11 @@ def point(
     Columns:
         mu [1]: Coulomb friction coefficient
         gamma_over_Eh [1]: work of adhesion over E h
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         h_limit_over_R [1]: thickness above which the shell does not snap before δ_max
         h_lo_over_R [1]: the bisection's snapping end
         h_hi_over_R [1]: its non-snapping end
@@ -732,6 +742,13 @@ def point(
             mesh resolves it
         apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
         dimple [h]: imperfection: the depth of the apex dimple
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
+        gamma_max_over_Eh [1]: the largest γ/(E h) the bracket tries: where the shell snaps up to it,
+            γ_c is only bounded below (0 on the map's rows of the buckling limit)
         n_meridian [count]: elements along the meridian
         gamma_c_over_Eh [1]: critical adhesion γ_c/(E h): above it no snap before δ_max (geometric mid
             of the bracket)
@@ -792,6 +809,13 @@ def point(
         found [boolean]: the bracket closed (false: the threshold lies beyond the searched range; the
             value is a bound)
         reliable [boolean]: both bracket ends rest on converged probes
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
+        gamma_max_over_Eh [1]: the largest γ/(E h) the bracket tries: where the shell snaps up to it,
+            γ_c is only bounded below (0 on the map's rows of the buckling limit)
     """
 
 @overload
@@ -860,6 +884,12 @@ def point(
         h_over_R [1]: thickness over inner radius
         gamma [N/mm]: work of adhesion Δγ
         mu [1]: Coulomb friction coefficient
+        apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
+        dimple [h]: imperfection: the depth of the apex dimple
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         delta_over_R [R]: plate displacement δ/R
         F_bar [F_c]: net plate force (contact minus adhesion), the force the figures draw
         F_error_bar [F_c]: the mesh's share of its error
@@ -1405,6 +1435,7 @@ def point(
         error_estimate [units of the main result]: a bound on the error of the row's main result
             (Richardson share, quadrature or bracket; docs/performance.md)
         s [1]: exponent of the power-law retardation spectrum (Eq. 5.24)
+        tau_ratio [1]: τ1/τ2, the power-law spectrum's shortest retardation time over its longest
         n_eq_5_28 [1]: the power-law exponent (1-s)/(2-s) of Eq. 5.28
         material [text]: the viscoelastic material (`SLS k = ...`, a Prony series, a power law)
     """
@@ -2067,6 +2098,11 @@ def sweep(
         mu [1]: Coulomb friction coefficient
         apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
         dimple [h]: imperfection: the depth of the apex dimple
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         buckled [boolean]: the shell snapped through on loading
         F_buckling_bar [F_c]: net plate force at the snap (the last stable state)
         F_contact_buckling_bar [F_c]: contact force at the snap
@@ -2139,6 +2175,11 @@ def sweep(
     Columns:
         mu [1]: Coulomb friction coefficient
         gamma_over_Eh [1]: work of adhesion over E h
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         h_limit_over_R [1]: thickness above which the shell does not snap before δ_max
         h_lo_over_R [1]: the bisection's snapping end
         h_hi_over_R [1]: its non-snapping end
@@ -2216,6 +2257,13 @@ def sweep(
             mesh resolves it
         apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
         dimple [h]: imperfection: the depth of the apex dimple
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
+        gamma_max_over_Eh [1]: the largest γ/(E h) the bracket tries: where the shell snaps up to it,
+            γ_c is only bounded below (0 on the map's rows of the buckling limit)
         n_meridian [count]: elements along the meridian
         gamma_c_over_Eh [1]: critical adhesion γ_c/(E h): above it no snap before δ_max (geometric mid
             of the bracket)
@@ -2281,6 +2329,13 @@ def sweep(
         found [boolean]: the bracket closed (false: the threshold lies beyond the searched range; the
             value is a bound)
         reliable [boolean]: both bracket ends rest on converged probes
+        delta_max_over_R [R]: where the loading leg ends, δ_max/R: a snap counts only before it
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
+        gamma_max_over_Eh [1]: the largest γ/(E h) the bracket tries: where the shell snaps up to it,
+            γ_c is only bounded below (0 on the map's rows of the buckling limit)
     """
 
 @overload
@@ -2354,6 +2409,12 @@ def sweep(
         h_over_R [1]: thickness over inner radius
         gamma [N/mm]: work of adhesion Δγ
         mu [1]: Coulomb friction coefficient
+        apex_force [F_c]: imperfection: the point force at the inner apex, away from the plate
+        dimple [h]: imperfection: the depth of the apex dimple
+        criterion [text]: what counts as the snap-through (`model.snap`): `local` (the stability test
+            gives the flattened state up; `instability`), `landing`, `energy` (the inverted state lies
+            lower by the friction work of the way there; `energy_friction`, the published one), `energy
+            (no friction work)` (`energy`), `staggered (the thesis' procedure)` (`thesis`)
         delta_over_R [R]: plate displacement δ/R
         F_bar [F_c]: net plate force (contact minus adhesion), the force the figures draw
         F_error_bar [F_c]: the mesh's share of its error
@@ -2969,6 +3030,7 @@ def sweep(
         error_estimate [units of the main result]: a bound on the error of the row's main result
             (Richardson share, quadrature or bracket; docs/performance.md)
         s [1]: exponent of the power-law retardation spectrum (Eq. 5.24)
+        tau_ratio [1]: τ1/τ2, the power-law spectrum's shortest retardation time over its longest
         n_eq_5_28 [1]: the power-law exponent (1-s)/(2-s) of Eq. 5.28
         material [text]: the viscoelastic material (`SLS k = ...`, a Prony series, a power law)
     """
