@@ -100,7 +100,7 @@ fn the_thesis_pipeline_makes_its_figures_and_the_values_hold() {
     let (s, e) = (column(&sq, "slope")[i], column(&sq, "slope_std_error")[i]);
     assert!((s - 0.5).abs() < 0.02 && e < 0.01, "{s} +- {e}");
     // Provenance: the code version on every row.
-    assert!(strings(&pb, "code_version").iter().all(|c| c == "theory.persson_brener@v3"));
+    assert!(strings(&pb, "code_version").iter().all(|c| c == "theory.persson_brener@v4"));
 
     // Fig. 4.4 (Section 4.3.3): the friction integrand integrates to mu*; for lambda > 1 the
     // trailing edge (right) contributes most, for lambda = 0.1 the leading edge (left).

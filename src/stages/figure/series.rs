@@ -1,7 +1,6 @@
 //! The data of a figure's layers: the series drawn from the needed stages' columns (with
 //! their error bars and groups), the power-law guide lines, and the fitted lines.
 
-use super::template::listed;
 use super::{DataLayer, FitLayer, GuideLayer, Style};
 use anyhow::Context;
 use anyhow::Result;
@@ -191,4 +190,19 @@ pub(super) fn fit_series(layer: &FitLayer, inputs: &Inputs, log_x: bool) -> Resu
             s
         })
         .collect())
+}
+
+/// Values in numeric order where they are numbers, as a sentence lists them: "1", "0.1 and
+/// 1", "0.1, 1 and 10".
+pub(super) fn listed(values: &BTreeSet<String>) -> String {
+    let mut v: Vec<&String> = values.iter().collect();
+    v.sort_by(|a, b| match (a.parse::<f64>(), b.parse::<f64>()) {
+        (Ok(x), Ok(y)) => x.total_cmp(&y),
+        _ => a.cmp(b),
+    });
+    match v.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} and {last}", rest.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")),
+        None => String::new(),
+    }
 }

@@ -4,7 +4,7 @@
 //! values there, the text lists them all ("W = 0.1 and 1"): a title never claims one value
 //! for data drawn at several (per curve, a layer's label says which).
 
-use super::series::kept_rows;
+use super::series::{kept_rows, listed};
 use super::{FigureParams, Layer};
 use anyhow::{bail, Result};
 use pipeline::kind::{ColumnRead, Inputs};
@@ -43,21 +43,6 @@ pub(super) fn text_reads(p: &FigureParams) -> Vec<ColumnRead> {
             placeholders(text).into_iter().map(move |column| ColumnRead { path: path.into(), stage: None, column })
         })
         .collect()
-}
-
-/// Values in numeric order where they are numbers, as a sentence lists them: "1", "0.1 and
-/// 1", "0.1, 1 and 10".
-pub(super) fn listed(values: &BTreeSet<String>) -> String {
-    let mut v: Vec<&String> = values.iter().collect();
-    v.sort_by(|a, b| match (a.parse::<f64>(), b.parse::<f64>()) {
-        (Ok(x), Ok(y)) => x.total_cmp(&y),
-        _ => a.cmp(b),
-    });
-    match v.split_last() {
-        Some((last, [])) => last.to_string(),
-        Some((last, rest)) => format!("{} and {last}", rest.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")),
-        None => String::new(),
-    }
 }
 
 /// `text` with each placeholder replaced by the values its column takes in the kept rows of
