@@ -70,7 +70,7 @@ pub struct FemBuckling;
 
 impl Kind for FemBuckling {
     const NAME: &'static str = "fem.buckling";
-    const VERSION: u32 = 34;
+    const VERSION: u32 = 35;
     const DOC: &'static str =
         "Chapter 3: F_buckling, delta at it and the dissipated energy W at one (h/R, gamma/(E h), mu)";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "gamma_over_Eh", "mu", "apex_force", "dimple"];
@@ -255,7 +255,7 @@ pub struct FemBucklingLimit;
 
 impl Kind for FemBucklingLimit {
     const NAME: &'static str = "fem.buckling_limit";
-    const VERSION: u32 = 23;
+    const VERSION: u32 = 24;
     const DOC: &'static str =
         "Chapter 3: the h/R above which the shell does not snap through before delta_max, by bisection";
     const SWEEPABLE: &'static [&'static str] = &["mu", "gamma_over_Eh"];

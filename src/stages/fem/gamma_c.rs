@@ -85,7 +85,7 @@ pub struct FemGammaC;
 
 impl Kind for FemGammaC {
     const NAME: &'static str = "fem.gamma_c";
-    const VERSION: u32 = 28;
+    const VERSION: u32 = 29;
     const DOC: &'static str =
         "Chapter 3: critical adhesion gamma_c/(E h) above which the shell does not snap, by bracketing, with Eq. 3.7";
     const SWEEPABLE: &'static [&'static str] = &["h_over_R", "mu", "g0", "apex_force", "dimple"];

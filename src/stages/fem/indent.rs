@@ -283,7 +283,7 @@ pub struct FemIndent;
 
 impl Kind for FemIndent {
     const NAME: &'static str = "fem.indent";
-    const VERSION: u32 = 37;
+    const VERSION: u32 = 38;
     const DOC: &'static str =
         "Chapter 3: load-unload cycle of a shell pressed by a rigid plate (snap-through, snap-back, unstable branch)";
     const SWEEPABLE: &'static [&'static str] = &["gamma", "mu"];

@@ -39,7 +39,7 @@ pub struct FemProfile;
 
 impl Kind for FemProfile {
     const NAME: &'static str = "fem.profile";
-    const VERSION: u32 = 23;
+    const VERSION: u32 = 24;
     const DOC: &'static str =
         "Chapter 3: deformed meridian (outer and inner surface) and contact pressure at chosen plate displacements";
     const COLUMNS: &'static [&'static str] = &[

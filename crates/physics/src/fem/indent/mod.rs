@@ -341,7 +341,8 @@ pub fn solve_from_extending(
 /// Newton steps (K + sigma I) du = -r with backtracking on Pi: sigma (relative to K's mean
 /// diagonal) is raised tenfold until the shifted tangent is positive definite and a step
 /// along it lowers Pi, and lowered tenfold after each success, to zero, so that near a
-/// minimum the steps are Newton's and converge quadratically. This is where a quasi-statically damped shell that
+/// minimum the steps are Newton's and converge quadratically; a descent that stalls there
+/// (Pi flat to its rounding) is finished by Newton (`POLISH_REACH`). This is where a quasi-statically damped shell that
 /// has lost stability comes to rest; plain Newton from a guess converges to whichever
 /// equilibrium is near, stable or not, or to none. Converged means a residual below
 /// tolerance at a positive-definite tangent (a stable state); otherwise the last iterate is
@@ -349,6 +350,20 @@ pub fn solve_from_extending(
 pub fn descend(model: &Model, plate: &Plate, e: f64, delta: f64, u0: &[f64], max_iterations: usize) -> Step {
     descend_loaded(model, plate, e, delta, u0, &[], max_iterations)
 }
+
+/// How near its tolerance (a multiple of it) a descent that stalls is polished by Newton:
+/// near a minimum of Pi, where Pi is flat to rounding and cannot tell the backtracking's
+/// trials apart, a full step that crosses a contact node's kink is refused, and the shifted
+/// steps that follow creep (the adhering state at delta = 0 of h/R = 0.06, gamma/(E h) =
+/// 1e-4 stalled at 53 times the tolerance and spent its 400 iterations; Newton from there
+/// converges in one iteration to the state the continuation reaches, to 1.4e-15 mm:
+/// docs/tuning.md, "Shell").
+const POLISH_REACH: f64 = 1e3;
+
+/// The rise of Pi (relative) a polish may bring: the rounding of Pi summed over the mesh
+/// (that Newton step raised it by 1.2e-12 of itself), far below the difference between two
+/// distinct states.
+const POLISH_RISE: f64 = 1e-9;
 
 /// `descend` with the dead load `-dead` added to the plate's forces (`dead`: a fixed
 /// gradient, full dof vector, as `Adhesion::apply` writes it; empty: none), whose potential
@@ -442,6 +457,18 @@ pub fn descend_loaded(
                 shift = if shift <= SHIFT_MIN { 0.0 } else { 0.1 * shift };
             }
             None => {
+                // Stalled at a stable state within reach of the tolerance: Newton from here
+                // (`polish`), kept if it lowers the residual to tolerance at a stable state
+                // without raising Pi.
+                if shift == 0.0 && dead.is_empty() && cur.norm <= POLISH_REACH * tol {
+                    let q = solve_at(model, plate, e, delta, &u, &[], Options::default());
+                    let next = q.converged().then(|| state(&q.u)).flatten();
+                    if let Some((ev, p)) = next.filter(|(ev, p)| ev.norm <= tol && *p <= pi + POLISH_RISE * pi.abs()) {
+                        iterations += q.iterations;
+                        (u, cur, pi) = (q.u, ev, p);
+                        continue;
+                    }
+                }
                 shift = raise(shift);
                 if shift > SHIFT_MAX {
                     no_descent = true;
