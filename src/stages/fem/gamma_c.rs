@@ -227,36 +227,32 @@ impl Kind for FemGammaCMap {
     fn run(p: &MapParams, inputs: &Inputs) -> Result<Output> {
         let t = inputs.table(&p.gamma_c)?;
         let col = |name: &str| t.f64_column(name);
-        let (h, mu, g, lo, hi, eq, ok, found, err) = (
+        let (h, mu, g, lo, hi, eq) = (
             col("h_over_R")?,
             col("mu")?,
             col("gamma_c_over_Eh")?,
             col("gamma_lo_over_Eh")?,
             col("gamma_hi_over_Eh")?,
             col("eq3_7_over_Eh")?,
-            col("reliable")?,
-            col("found")?,
-            col("error_estimate")?,
         );
+        let (reliable, found, err) = (col("reliable")?, col("found")?, col("error_estimate")?);
         let (delta_max, gamma_max, criterion) =
             (col("delta_max_over_R")?, col("gamma_max_over_Eh")?, t.str_column("criterion")?);
         let mut rows: Vec<MapRow> = (0..h.len())
             .map(|i| MapRow {
-                numbers: [
-                    mu[i],
-                    h[i],
-                    g[i],
-                    lo[i],
-                    hi[i],
-                    eq[i],
-                    ok[i],
-                    found[i],
-                    err[i],
-                    0.0,
-                    delta_max[i],
-                    gamma_max[i],
-                ],
+                mu: mu[i],
+                h: h[i],
+                gamma_c: g[i],
+                lo: lo[i],
+                hi: hi[i],
+                error: err[i],
+                h_error: 0.0,
+                eq3_7: eq[i],
+                found: found[i] > 0.5,
+                reliable: reliable[i] > 0.5,
+                delta_max: delta_max[i],
                 criterion: criterion[i].clone(),
+                gamma_max: gamma_max[i],
             })
             .collect();
         if let Some(l) = &p.limit {
@@ -264,46 +260,64 @@ impl Kind for FemGammaCMap {
             let (lmu, lh, found) = (lt.f64_column("mu")?, lt.f64_column("h_limit_over_R")?, lt.f64_column("found")?);
             let (llo, lhi) = (lt.f64_column("h_lo_over_R")?, lt.f64_column("h_hi_over_R")?);
             let (ldelta, lcriterion) = (lt.f64_column("delta_max_over_R")?, lt.str_column("criterion")?);
-            for i in 0..lmu.len() {
-                if found[i] > 0.5 {
-                    let half = 0.5 * (lhi[i] - llo[i]);
-                    rows.push(MapRow {
-                        numbers: [lmu[i], lh[i], 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, half, ldelta[i], 0.0],
-                        criterion: lcriterion[i].clone(),
-                    });
-                }
+            for i in (0..lmu.len()).filter(|&i| found[i] > 0.5) {
+                rows.push(MapRow {
+                    mu: lmu[i],
+                    h: lh[i],
+                    gamma_c: 0.0,
+                    lo: 0.0,
+                    hi: 0.0,
+                    error: 0.0,
+                    h_error: 0.5 * (lhi[i] - llo[i]),
+                    eq3_7: 0.0,
+                    found: true,
+                    reliable: true,
+                    delta_max: ldelta[i],
+                    criterion: lcriterion[i].clone(),
+                    gamma_max: 0.0,
+                });
             }
         }
         if rows.is_empty() {
             bail!("stage `{}` has no points", p.gamma_c);
         }
-        rows.sort_by(|a, b| a.numbers[0].total_cmp(&b.numbers[0]).then(a.numbers[1].total_cmp(&b.numbers[1])));
-        let c = |k: usize| rows.iter().map(|r| finite(r.numbers[k])).collect::<Vec<f64>>();
+        rows.sort_by(|a, b| a.mu.total_cmp(&b.mu).then(a.h.total_cmp(&b.h)));
+        let c = |f: fn(&MapRow) -> f64| rows.iter().map(|r| finite(f(r))).collect::<Vec<f64>>();
         Ok(Table::new()
-            .with_f64("mu", c(0))
-            .with_f64("h_over_R", c(1))
-            .with_f64("gamma_c_over_Eh", c(2))
-            .with_f64("gamma_lo_over_Eh", c(3))
-            .with_f64("gamma_hi_over_Eh", c(4))
-            .with_f64("error_estimate", c(8))
-            .with_f64("h_error_over_R", c(9))
-            .with_f64("eq3_7_over_Eh", c(5))
-            .with("found", ColumnData::Bool(rows.iter().map(|r| r.numbers[7] > 0.5).collect()))
-            .with("reliable", ColumnData::Bool(rows.iter().map(|r| r.numbers[6] > 0.5).collect()))
-            .with_f64("delta_max_over_R", c(10))
+            .with_f64("mu", c(|r| r.mu))
+            .with_f64("h_over_R", c(|r| r.h))
+            .with_f64("gamma_c_over_Eh", c(|r| r.gamma_c))
+            .with_f64("gamma_lo_over_Eh", c(|r| r.lo))
+            .with_f64("gamma_hi_over_Eh", c(|r| r.hi))
+            .with_f64("error_estimate", c(|r| r.error))
+            .with_f64("h_error_over_R", c(|r| r.h_error))
+            .with_f64("eq3_7_over_Eh", c(|r| r.eq3_7))
+            .with("found", ColumnData::Bool(rows.iter().map(|r| r.found).collect()))
+            .with("reliable", ColumnData::Bool(rows.iter().map(|r| r.reliable).collect()))
+            .with_f64("delta_max_over_R", c(|r| r.delta_max))
             .with("criterion", ColumnData::Str(rows.iter().map(|r| r.criterion.clone()).collect()))
-            .with_f64("gamma_max_over_Eh", c(11))
+            .with_f64("gamma_max_over_Eh", c(|r| r.gamma_max))
             .into())
     }
 }
 
-/// One row of the map: (mu, h/R, gamma_c, its bracket's ends, Eq. 3.7, reliable, found,
-/// gamma_c's error, h/R's error, delta_max/R, gamma_max) and the snap criterion. The error of
-/// h/R is none on the gamma_c points (h/R is given), the bisection's half-bracket on a limit
-/// row; gamma_max is 0 on a limit row (no gamma was bracketed there).
+/// One row of the map, a gamma_c point or a limit (where gamma_c is 0, found and reliable).
+/// The error of h/R is none on a gamma_c point (h/R is given), the bisection's half-bracket
+/// on a limit row; gamma_max is 0 on a limit row (no gamma was bracketed there).
 struct MapRow {
-    numbers: [f64; 12],
+    mu: f64,
+    h: f64,
+    gamma_c: f64,
+    lo: f64,
+    hi: f64,
+    error: f64,
+    h_error: f64,
+    eq3_7: f64,
+    found: bool,
+    reliable: bool,
+    delta_max: f64,
     criterion: String,
+    gamma_max: f64,
 }
 
 pub fn register(r: &mut Registry) {
